@@ -1,0 +1,306 @@
+//! Coarse coverage grids: a fine map grouped into `k × k` blocks (e.g. one tool
+//! diameter), each block standing for one coverage cell of the grid planners.
+//!
+//! **Rule for partially blocked blocks**: a block is a coarse cell when at least
+//! one of its fine cells is *plannable* (admissible and reachable); its
+//! *representative* is the plannable cell nearest the block's nominal centre
+//! (ties: row-major first), and a robot "visits" the coarse cell by standing
+//! there. Blocks at the right and bottom map edges may be clipped; their nominal
+//! centre is still that of a full block so lanes stay evenly spaced.
+//!
+//! Two 4-adjacent coarse cells are *connected* when a 4-connected path of
+//! plannable fine cells joins their representatives inside the two blocks;
+//! [`CoarseGrid::connect`] returns that path (shortest, by BFS in the window),
+//! so every coarse move maps to a collision-free fine path. What a coarse grid
+//! misses (the parts of a block not reachable from its representative inside the
+//! window, strips along walls) is left to a boundary pass.
+
+use std::collections::VecDeque;
+use std::ops::Range;
+
+use crate::frame::MapFrame;
+use crate::grid::{Cell, Dir4, Grid};
+use crate::math::Point;
+
+/// A coarse grid of representative cells over a fine plannable mask.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct CoarseGrid {
+    block: usize,
+    fine_width: usize,
+    fine_height: usize,
+    reps: Grid<Option<Cell>>,
+    moves: Grid<u8>,
+}
+
+impl CoarseGrid {
+    /// Groups `plannable` into `block × block` cells (`block >= 1`; 0 is taken as 1).
+    #[must_use]
+    pub fn new(plannable: &Grid<bool>, block: usize) -> Self {
+        let k = block.max(1);
+        let (fw, fh) = (plannable.width(), plannable.height());
+        let (cw, ch) = (fw.div_ceil(k), fh.div_ceil(k));
+        let reps = Grid::from_fn(cw, ch, |b| {
+            let mut best: Option<(usize, Cell)> = None;
+            // Doubled coordinates keep the nominal centre integral.
+            let cr = 2 * b.row * k + k - 1;
+            let cc = 2 * b.col * k + k - 1;
+            for r in b.row * k..((b.row + 1) * k).min(fh) {
+                for c in b.col * k..((b.col + 1) * k).min(fw) {
+                    let cell = Cell::new(r, c);
+                    if !plannable[cell] {
+                        continue;
+                    }
+                    let dr = (2 * r).abs_diff(cr);
+                    let dc = (2 * c).abs_diff(cc);
+                    let d = dr * dr + dc * dc;
+                    if best.is_none_or(|(bd, _)| d < bd) {
+                        best = Some((d, cell));
+                    }
+                }
+            }
+            best.map(|(_, c)| c)
+        });
+        let mut grid = Self {
+            block: k,
+            fine_width: fw,
+            fine_height: fh,
+            moves: Grid::new(cw, ch, 0),
+            reps,
+        };
+        let mut scratch = Window::default();
+        for b in grid.reps.cells() {
+            for dir in [Dir4::East, Dir4::South] {
+                let Some(n) = grid.reps.step(b, dir) else {
+                    continue;
+                };
+                let linked = match (grid.reps[b], grid.reps[n]) {
+                    (Some(a), Some(z)) if k == 1 => plannable[a] && plannable[z],
+                    (Some(_), Some(_)) => grid.window_path(plannable, b, n, &mut scratch).is_some(),
+                    _ => false,
+                };
+                if linked {
+                    grid.moves[b] |= dir.bit();
+                    grid.moves[n] |= dir.opposite().bit();
+                }
+            }
+        }
+        grid
+    }
+
+    /// Fine cells per block side.
+    #[must_use]
+    pub fn block_size(&self) -> usize {
+        self.block
+    }
+
+    /// Coarse columns.
+    #[must_use]
+    pub fn width(&self) -> usize {
+        self.reps.width()
+    }
+
+    /// Coarse rows.
+    #[must_use]
+    pub fn height(&self) -> usize {
+        self.reps.height()
+    }
+
+    /// The representative fine cell of a coarse cell, if it has one.
+    #[must_use]
+    pub fn representative(&self, coarse: Cell) -> Option<Cell> {
+        self.reps.get(coarse).copied().flatten()
+    }
+
+    /// Representatives of all coarse cells.
+    #[must_use]
+    pub fn representatives(&self) -> &Grid<Option<Cell>> {
+        &self.reps
+    }
+
+    /// `true` where the coarse cell has a representative.
+    #[must_use]
+    pub fn passable(&self) -> Grid<bool> {
+        self.reps.map(Option::is_some)
+    }
+
+    /// Open directions per coarse cell, one [`Dir4::bit`] each.
+    #[must_use]
+    pub fn moves(&self) -> &Grid<u8> {
+        &self.moves
+    }
+
+    /// Whether the coarse move from `coarse` in `dir` is connected.
+    #[must_use]
+    pub fn can_move(&self, coarse: Cell, dir: Dir4) -> bool {
+        self.moves.get(coarse).is_some_and(|m| m & dir.bit() != 0)
+    }
+
+    /// The coarse cell containing a fine cell.
+    #[must_use]
+    pub fn coarse_of(&self, fine: Cell) -> Cell {
+        Cell::new(fine.row / self.block, fine.col / self.block)
+    }
+
+    /// Fine rows and columns of a coarse cell (clipped at the map edge).
+    #[must_use]
+    pub fn block_cells(&self, coarse: Cell) -> (Range<usize>, Range<usize>) {
+        let k = self.block;
+        (
+            coarse.row * k..((coarse.row + 1) * k).min(self.fine_height),
+            coarse.col * k..((coarse.col + 1) * k).min(self.fine_width),
+        )
+    }
+
+    /// Nominal centre of a coarse cell in metres.
+    #[must_use]
+    pub fn center(&self, coarse: Cell, frame: &MapFrame) -> Point {
+        let k = self.block as f64;
+        frame.position(
+            coarse.row as f64 * k + (k - 1.0) / 2.0,
+            coarse.col as f64 * k + (k - 1.0) / 2.0,
+        )
+    }
+
+    /// The fine path from the representative of `a` to that of the adjacent `b`,
+    /// inside their two blocks (both ends included), if they are connected.
+    #[must_use]
+    pub fn connect(&self, plannable: &Grid<bool>, a: Cell, b: Cell) -> Option<Vec<Cell>> {
+        if a.manhattan(b) != 1 {
+            return None;
+        }
+        let mut scratch = Window::default();
+        self.window_path(plannable, a, b, &mut scratch)
+    }
+
+    fn window_path(
+        &self,
+        plannable: &Grid<bool>,
+        a: Cell,
+        b: Cell,
+        w: &mut Window,
+    ) -> Option<Vec<Cell>> {
+        let (from, to) = (self.representative(a)?, self.representative(b)?);
+        let (ra, ca) = self.block_cells(a);
+        let (rb, cb) = self.block_cells(b);
+        let rows = ra.start.min(rb.start)..ra.end.max(rb.end);
+        let cols = ca.start.min(cb.start)..ca.end.max(cb.end);
+        w.shortest(plannable, rows, cols, from, to)
+    }
+}
+
+/// Reusable BFS scratch over a small rectangular window.
+#[derive(Default)]
+struct Window {
+    parent: Vec<u32>,
+    queue: VecDeque<u32>,
+}
+
+impl Window {
+    const NONE: u32 = u32::MAX;
+
+    fn shortest(
+        &mut self,
+        plannable: &Grid<bool>,
+        rows: Range<usize>,
+        cols: Range<usize>,
+        from: Cell,
+        to: Cell,
+    ) -> Option<Vec<Cell>> {
+        let (h, w) = (rows.len(), cols.len());
+        let local = |c: Cell| ((c.row - rows.start) * w + (c.col - cols.start)) as u32;
+        let global = |i: u32| Cell::new(rows.start + i as usize / w, cols.start + i as usize % w);
+        self.parent.clear();
+        self.parent.resize(w * h, Self::NONE);
+        self.queue.clear();
+        let (s, t) = (local(from), local(to));
+        self.parent[s as usize] = s;
+        self.queue.push_back(s);
+        while let Some(i) = self.queue.pop_front() {
+            if i == t {
+                break;
+            }
+            let c = global(i);
+            for d in Dir4::ALL {
+                let Some(n) = plannable.step(c, d) else {
+                    continue;
+                };
+                if !rows.contains(&n.row) || !cols.contains(&n.col) || !plannable[n] {
+                    continue;
+                }
+                let j = local(n);
+                if self.parent[j as usize] == Self::NONE {
+                    self.parent[j as usize] = i;
+                    self.queue.push_back(j);
+                }
+            }
+        }
+        if self.parent[t as usize] == Self::NONE {
+            return None;
+        }
+        let mut path = vec![to];
+        let mut i = t;
+        while i != s {
+            i = self.parent[i as usize];
+            path.push(global(i));
+        }
+        path.reverse();
+        Some(path)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::io::parse_ascii;
+
+    #[test]
+    fn representatives_and_connections() {
+        let (m, _) = parse_ascii(
+            "
+            ...#..
+            ...#..
+            ......
+            ......",
+        )
+        .unwrap();
+        let free = m.free_mask();
+        let g = CoarseGrid::new(&free, 3);
+        assert_eq!((g.width(), g.height()), (2, 2));
+        // Block (0,0): centre (1,1).
+        assert_eq!(g.representative(Cell::new(0, 0)), Some(Cell::new(1, 1)));
+        // Block (0,1) spans cols 3..6 with col 3 blocked in rows 0..2: centre (1,4).
+        assert_eq!(g.representative(Cell::new(0, 1)), Some(Cell::new(1, 4)));
+        // Clipped bottom blocks: nominal centre row 4 is outside, nearest row 3.
+        assert_eq!(g.representative(Cell::new(1, 0)), Some(Cell::new(3, 1)));
+        // The wall in column 3 separates the top blocks inside their window only
+        // down to row 1; row 2 is open, so they connect around it.
+        assert!(g.can_move(Cell::new(0, 0), Dir4::East));
+        let p = g.connect(&free, Cell::new(0, 0), Cell::new(0, 1)).unwrap();
+        assert_eq!(p.first(), Some(&Cell::new(1, 1)));
+        assert_eq!(p.last(), Some(&Cell::new(1, 4)));
+        assert_eq!(p.len(), 6);
+        assert!(
+            p.windows(2)
+                .all(|w| w[0].manhattan(w[1]) == 1 && free[w[1]])
+        );
+    }
+
+    #[test]
+    fn walls_inside_the_window_disconnect() {
+        let (m, _) = parse_ascii(
+            "
+            ..#..
+            ..#..",
+        )
+        .unwrap();
+        let g = CoarseGrid::new(&m.free_mask(), 2);
+        assert!(!g.can_move(Cell::new(0, 0), Dir4::East));
+        assert!(g.representative(Cell::new(0, 1)).is_some());
+        // Unit blocks are the fine grid itself.
+        let g = CoarseGrid::new(&m.free_mask(), 1);
+        assert_eq!(
+            g.moves()[Cell::new(0, 0)],
+            Dir4::East.bit() | Dir4::South.bit()
+        );
+    }
+}

@@ -1,0 +1,106 @@
+//! 4-connected components and the reachable set from a start.
+//!
+//! Scan-order flood fill with an explicit stack: O(cells), no recursion, labels
+//! numbered in row-major order of each component's first cell.
+
+use crate::grid::{Cell, Grid};
+
+/// Component labelling of a mask.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Components {
+    /// 0 outside the mask, else the 1-based component number.
+    pub labels: Grid<u32>,
+    /// `sizes[i]` = cells in component `i + 1`.
+    pub sizes: Vec<usize>,
+}
+
+impl Components {
+    /// Number of components.
+    #[must_use]
+    pub fn count(&self) -> usize {
+        self.sizes.len()
+    }
+
+    /// The 1-based label of the largest component (first on ties), if any.
+    #[must_use]
+    pub fn largest(&self) -> Option<u32> {
+        let mut best: Option<(usize, u32)> = None;
+        for (i, &s) in self.sizes.iter().enumerate() {
+            if best.is_none_or(|(b, _)| s > b) {
+                best = Some((s, i as u32 + 1));
+            }
+        }
+        best.map(|(_, l)| l)
+    }
+}
+
+/// Labels the 4-connected components of the `true` cells.
+#[must_use]
+pub fn components4(mask: &Grid<bool>) -> Components {
+    let mut labels = Grid::new(mask.width(), mask.height(), 0u32);
+    let mut sizes = Vec::new();
+    let mut stack = Vec::new();
+    for start in mask.cells() {
+        if !mask[start] || labels[start] != 0 {
+            continue;
+        }
+        let label = sizes.len() as u32 + 1;
+        labels[start] = label;
+        stack.push(start);
+        let mut size = 0;
+        while let Some(c) = stack.pop() {
+            size += 1;
+            for (_, n) in mask.neighbours4(c) {
+                if mask[n] && labels[n] == 0 {
+                    labels[n] = label;
+                    stack.push(n);
+                }
+            }
+        }
+        sizes.push(size);
+    }
+    Components { labels, sizes }
+}
+
+/// Cells of `mask` 4-connected to `start` (empty if `start` is not in the mask).
+#[must_use]
+pub fn reachable(mask: &Grid<bool>, start: Cell) -> Grid<bool> {
+    let mut out = Grid::new(mask.width(), mask.height(), false);
+    if !mask.is_set(start) {
+        return out;
+    }
+    out[start] = true;
+    let mut stack = vec![start];
+    while let Some(c) = stack.pop() {
+        for (_, n) in mask.neighbours4(c) {
+            if mask[n] && !out[n] {
+                out[n] = true;
+                stack.push(n);
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::io::parse_ascii;
+
+    #[test]
+    fn labels_components_in_scan_order() {
+        let (m, _) = parse_ascii(
+            "
+            ..#.
+            ###.
+            .#..",
+        )
+        .unwrap();
+        let c = components4(&m.free_mask());
+        assert_eq!(c.sizes, vec![2, 4, 1]);
+        assert_eq!(c.largest(), Some(2));
+        let r = reachable(&m.free_mask(), Cell::new(0, 3));
+        assert_eq!(r.count_true(), 4);
+        assert_eq!(reachable(&m.free_mask(), Cell::new(1, 0)).count_true(), 0);
+    }
+}

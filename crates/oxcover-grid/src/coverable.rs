@@ -1,0 +1,238 @@
+//! The contract's coverage problem on a map: admissible, reachable and coverable cells.
+//!
+//! - *Admissible*: see [`crate::admissible()`].
+//! - *Reachable*: admissible cells 4-connected to the start through admissible cells.
+//! - *Coverable*: free cells whose centre is within the tool radius of a
+//!   reachable cell's centre (exact EDT between centres, same tolerance).
+//!
+//! The default start is the first admissible cell in row-major order of the
+//! image (top row first); a start that is not admissible is an error, never a
+//! silent move.
+
+use crate::admissible::{TOLERANCE_CELLS, admissible};
+use crate::components::reachable;
+use crate::edt::center_distance_sq;
+use crate::error::{Error, Result, non_negative, positive};
+use crate::grid::{Cell, Grid};
+use crate::math::Point;
+use crate::occupancy::{Occupancy, OccupancyGrid};
+
+/// A disc robot carrying a disc tool centred on it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct DiscRobot {
+    /// Body radius in metres (default 0: a point robot, contract).
+    pub robot_radius: f64,
+    /// Cleaning/sensing radius in metres (default `resolution / 2`, contract).
+    pub tool_radius: f64,
+}
+
+impl DiscRobot {
+    /// A robot with the given radii, checked: robot radius finite and `>= 0`,
+    /// tool radius finite and `> 0`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming `--robot-radius` or `--tool-radius`.
+    pub fn new(robot_radius: f64, tool_radius: f64) -> Result<Self> {
+        Ok(Self {
+            robot_radius: non_negative("--robot-radius", robot_radius)?,
+            tool_radius: positive("--tool-radius", tool_radius)?,
+        })
+    }
+
+    /// The contract's defaults for a map of the given resolution: one cell is one
+    /// footprint (robot radius 0, tool radius `resolution / 2`).
+    #[must_use]
+    pub fn cell_sized(resolution: f64) -> Self {
+        Self {
+            robot_radius: 0.0,
+            tool_radius: resolution / 2.0,
+        }
+    }
+
+    /// Tool radius in cells of the given resolution.
+    #[must_use]
+    pub fn tool_cells(&self, resolution: f64) -> f64 {
+        self.tool_radius / resolution
+    }
+}
+
+/// Admissible, reachable and coverable cells of a map for a robot and a start.
+#[derive(Clone, Debug)]
+pub struct Coverability {
+    /// The robot and tool.
+    pub robot: DiscRobot,
+    /// Admissible cells.
+    pub admissible: Grid<bool>,
+    /// The start cell (admissible).
+    pub start: Cell,
+    /// Admissible cells reachable from `start`.
+    pub reachable: Grid<bool>,
+    /// Free cells the tool can cover from some reachable cell.
+    pub coverable: Grid<bool>,
+}
+
+impl Coverability {
+    /// Builds the problem; `start` in metres, or `None` for the default start.
+    ///
+    /// # Errors
+    /// [`Error::NoFreeCell`], [`Error::NoAdmissibleCell`], [`Error::StartOutsideMap`],
+    /// [`Error::StartNotAdmissible`].
+    pub fn new(map: &OccupancyGrid, robot: DiscRobot, start: Option<Point>) -> Result<Self> {
+        let counts = map.counts();
+        if counts.free == 0 {
+            return Err(Error::NoFreeCell {
+                width: map.width(),
+                height: map.height(),
+            });
+        }
+        let admissible = admissible(map, robot.robot_radius);
+        let start = match start {
+            None => admissible
+                .true_cells()
+                .next()
+                .ok_or(Error::NoAdmissibleCell {
+                    robot_radius: robot.robot_radius,
+                })?,
+            Some(p) => {
+                let frame = map.frame();
+                let cell = frame.cell_at(&p).ok_or_else(|| {
+                    let (lo, hi) = frame.bounds();
+                    Error::StartOutsideMap {
+                        x: p.x,
+                        y: p.y,
+                        xmin: lo.x,
+                        xmax: hi.x,
+                        ymin: lo.y,
+                        ymax: hi.y,
+                    }
+                })?;
+                if !admissible[cell] {
+                    let reason = match map.cells()[cell] {
+                        Occupancy::Occupied => "occupied",
+                        Occupancy::Unknown => "unknown",
+                        Occupancy::Free => {
+                            "free but closer than the robot radius to an obstacle, unknown cell or the map edge"
+                        }
+                    };
+                    return Err(Error::StartNotAdmissible {
+                        x: p.x,
+                        y: p.y,
+                        row: cell.row,
+                        col: cell.col,
+                        reason,
+                    });
+                }
+                cell
+            }
+        };
+        Ok(Self::from_parts(map, robot, admissible, start))
+    }
+
+    /// Builds the problem from an admissible start cell (e.g. the `S` of an ASCII map).
+    ///
+    /// # Errors
+    /// As [`Coverability::new`].
+    pub fn with_start_cell(map: &OccupancyGrid, robot: DiscRobot, start: Cell) -> Result<Self> {
+        let p = map.frame().position(start.row as f64, start.col as f64);
+        Self::new(map, robot, Some(p))
+    }
+
+    fn from_parts(
+        map: &OccupancyGrid,
+        robot: DiscRobot,
+        admissible: Grid<bool>,
+        start: Cell,
+    ) -> Self {
+        let reachable = reachable(&admissible, start);
+        let coverable = coverable_cells(
+            &map.free_mask(),
+            &reachable,
+            robot.tool_cells(map.resolution()),
+        );
+        Self {
+            robot,
+            admissible,
+            start,
+            reachable,
+            coverable,
+        }
+    }
+
+    /// Number of coverable cells.
+    #[must_use]
+    pub fn coverable_count(&self) -> usize {
+        self.coverable.count_true()
+    }
+}
+
+/// Free cells whose centre lies within `tool_cells` (in cells) of a `centres` cell centre.
+#[must_use]
+pub fn coverable_cells(free: &Grid<bool>, centres: &Grid<bool>, tool_cells: f64) -> Grid<bool> {
+    let reach = tool_cells + TOLERANCE_CELLS;
+    if reach < 1.0 {
+        // Only the centre cells themselves are within reach.
+        return Grid::from_fn(free.width(), free.height(), |c| free[c] && centres[c]);
+    }
+    let d2 = center_distance_sq(centres);
+    let r2 = reach * reach;
+    Grid::from_fn(free.width(), free.height(), |c| {
+        free[c] && (d2[c] as f64) <= r2
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::io::parse_ascii;
+
+    fn map(text: &str, res: f64) -> OccupancyGrid {
+        let (m, _) = parse_ascii(text).unwrap();
+        OccupancyGrid::new(m.cells().clone(), res, Point::origin())
+    }
+
+    #[test]
+    fn default_start_is_first_admissible_cell() {
+        let m = map("###\n#..\n...", 1.0);
+        let p = Coverability::new(&m, DiscRobot::cell_sized(1.0), None).unwrap();
+        assert_eq!(p.start, Cell::new(1, 1));
+        assert_eq!(p.coverable_count(), 5);
+    }
+
+    #[test]
+    fn start_errors_say_why() {
+        let m = map("#..\n...", 1.0);
+        let r = DiscRobot::cell_sized(1.0);
+        let e = Coverability::new(&m, r, Some(Point::new(0.5, 1.5))).unwrap_err();
+        assert!(e.to_string().contains("occupied"), "{e}");
+        let e = Coverability::new(&m, r, Some(Point::new(7.0, 1.5))).unwrap_err();
+        assert!(e.to_string().contains("outside the map"), "{e}");
+        let e = Coverability::new(&map("##\n##", 1.0), r, None).unwrap_err();
+        assert!(e.to_string().contains("no free cell"), "{e}");
+        let big = DiscRobot::new(5.0, 0.5).unwrap();
+        let e = Coverability::new(&m, big, None).unwrap_err();
+        assert!(e.to_string().contains("no admissible cell"), "{e}");
+        assert!(DiscRobot::new(f64::NAN, 0.5).is_err());
+        assert!(DiscRobot::new(-1.0, 0.5).is_err());
+        assert!(DiscRobot::new(0.0, 0.0).is_err());
+    }
+
+    #[test]
+    fn tool_reaches_the_wall_strip() {
+        // 0.05 m cells, robot and tool 0.15 m: admissible cells are >= 3.5 cells
+        // from the walls; the cells next to the wall are exactly 0.15 m from the
+        // nearest admissible centre, so they are coverable. A round tool cannot
+        // reach the five cells in each square corner.
+        let mut rows = vec!["#".repeat(12)];
+        for _ in 0..10 {
+            rows.push(format!("#{}#", ".".repeat(10)));
+        }
+        rows.push("#".repeat(12));
+        let m = map(&rows.join("\n"), 0.05);
+        let r = DiscRobot::new(0.15, 0.15).unwrap();
+        let p = Coverability::new(&m, r, None).unwrap();
+        assert_eq!(p.reachable.count_true(), 4 * 4);
+        assert_eq!(p.coverable_count(), 100 - 4 * 5);
+        assert_eq!(p.start, Cell::new(4, 4));
+    }
+}

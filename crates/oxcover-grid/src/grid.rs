@@ -1,0 +1,447 @@
+//! The grid container, cell addresses and neighbourhoods.
+//!
+//! A [`Grid<T>`] stores one value per cell in row-major order. Cells are
+//! addressed by `(row, col)` with row 0 at the TOP, as in the image a map was
+//! read from; [`crate::MapFrame`] converts to metres. Moves are 4-connected
+//! ([`Dir4`]) unless a caller asks for the 8-neighbourhood ([`Dir8`]).
+
+use std::ops::{Index, IndexMut};
+
+/// A cell address: `row` counts down from the top row, `col` to the right.
+///
+/// The derived ordering is row-major, the order every tie-break in the
+/// workspace falls back to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Cell {
+    /// Row, 0 = top.
+    pub row: usize,
+    /// Column, 0 = left.
+    pub col: usize,
+}
+
+impl Cell {
+    /// Builds a cell from `(row, col)`.
+    #[must_use]
+    pub const fn new(row: usize, col: usize) -> Self {
+        Self { row, col }
+    }
+
+    /// Manhattan (l1) distance between two cells.
+    #[must_use]
+    pub fn manhattan(self, other: Cell) -> usize {
+        self.row.abs_diff(other.row) + self.col.abs_diff(other.col)
+    }
+
+    /// The direction of a unit 4-connected move from `self` to `other`, if it is one.
+    #[must_use]
+    pub fn dir_to(self, other: Cell) -> Option<Dir4> {
+        Dir4::ALL.into_iter().find(|d| {
+            let (dr, dc) = d.offset();
+            self.row.checked_add_signed(dr) == Some(other.row)
+                && self.col.checked_add_signed(dc) == Some(other.col)
+        })
+    }
+}
+
+impl From<(usize, usize)> for Cell {
+    fn from((row, col): (usize, usize)) -> Self {
+        Self { row, col }
+    }
+}
+
+/// The four axis directions. Order (N, E, S, W) is the fixed tie-break order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum Dir4 {
+    /// Up: row - 1 (towards +y in the map frame).
+    North = 0,
+    /// Right: col + 1 (towards +x).
+    East = 1,
+    /// Down: row + 1 (towards -y).
+    South = 2,
+    /// Left: col - 1 (towards -x).
+    West = 3,
+}
+
+impl Dir4 {
+    /// All four directions in tie-break order.
+    pub const ALL: [Dir4; 4] = [Dir4::North, Dir4::East, Dir4::South, Dir4::West];
+
+    /// `(drow, dcol)` of a unit move.
+    #[must_use]
+    pub const fn offset(self) -> (isize, isize) {
+        match self {
+            Dir4::North => (-1, 0),
+            Dir4::East => (0, 1),
+            Dir4::South => (1, 0),
+            Dir4::West => (0, -1),
+        }
+    }
+
+    /// The opposite direction.
+    #[must_use]
+    pub const fn opposite(self) -> Dir4 {
+        match self {
+            Dir4::North => Dir4::South,
+            Dir4::East => Dir4::West,
+            Dir4::South => Dir4::North,
+            Dir4::West => Dir4::East,
+        }
+    }
+
+    /// Index 0..4 in [`Dir4::ALL`].
+    #[must_use]
+    pub const fn index(self) -> usize {
+        self as usize
+    }
+
+    /// Bit `1 << index`, for move masks.
+    #[must_use]
+    pub const fn bit(self) -> u8 {
+        1 << (self as u8)
+    }
+
+    /// The direction with the given index (taken modulo 4).
+    #[must_use]
+    pub const fn from_index(i: usize) -> Dir4 {
+        Dir4::ALL[i % 4]
+    }
+}
+
+/// The eight king-move directions, clockwise from north.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Dir8 {
+    /// row - 1
+    North,
+    /// row - 1, col + 1
+    NorthEast,
+    /// col + 1
+    East,
+    /// row + 1, col + 1
+    SouthEast,
+    /// row + 1
+    South,
+    /// row + 1, col - 1
+    SouthWest,
+    /// col - 1
+    West,
+    /// row - 1, col - 1
+    NorthWest,
+}
+
+impl Dir8 {
+    /// All eight directions, clockwise from north.
+    pub const ALL: [Dir8; 8] = [
+        Dir8::North,
+        Dir8::NorthEast,
+        Dir8::East,
+        Dir8::SouthEast,
+        Dir8::South,
+        Dir8::SouthWest,
+        Dir8::West,
+        Dir8::NorthWest,
+    ];
+
+    /// `(drow, dcol)` of the move.
+    #[must_use]
+    pub const fn offset(self) -> (isize, isize) {
+        match self {
+            Dir8::North => (-1, 0),
+            Dir8::NorthEast => (-1, 1),
+            Dir8::East => (0, 1),
+            Dir8::SouthEast => (1, 1),
+            Dir8::South => (1, 0),
+            Dir8::SouthWest => (1, -1),
+            Dir8::West => (0, -1),
+            Dir8::NorthWest => (-1, -1),
+        }
+    }
+
+    /// Whether the move is diagonal.
+    #[must_use]
+    pub const fn is_diagonal(self) -> bool {
+        let (dr, dc) = self.offset();
+        dr != 0 && dc != 0
+    }
+}
+
+/// A dense `width × height` grid of `T`, row-major, row 0 at the top.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Grid<T> {
+    width: usize,
+    height: usize,
+    data: Vec<T>,
+}
+
+impl<T: Clone> Grid<T> {
+    /// A grid with every cell set to `fill`.
+    #[must_use]
+    pub fn new(width: usize, height: usize, fill: T) -> Self {
+        Self {
+            width,
+            height,
+            data: vec![fill; width * height],
+        }
+    }
+
+    /// Sets every cell to `value`.
+    pub fn fill(&mut self, value: T) {
+        self.data.fill(value);
+    }
+}
+
+impl<T> Grid<T> {
+    /// Wraps row-major data; `None` when `data.len() != width * height`.
+    #[must_use]
+    pub fn from_vec(width: usize, height: usize, data: Vec<T>) -> Option<Self> {
+        (width.checked_mul(height) == Some(data.len())).then_some(Self {
+            width,
+            height,
+            data,
+        })
+    }
+
+    /// A grid whose cell values are `f(cell)`.
+    #[must_use]
+    pub fn from_fn(width: usize, height: usize, mut f: impl FnMut(Cell) -> T) -> Self {
+        let mut data = Vec::with_capacity(width * height);
+        for row in 0..height {
+            for col in 0..width {
+                data.push(f(Cell::new(row, col)));
+            }
+        }
+        Self {
+            width,
+            height,
+            data,
+        }
+    }
+
+    /// Number of columns.
+    #[must_use]
+    pub fn width(&self) -> usize {
+        self.width
+    }
+
+    /// Number of rows.
+    #[must_use]
+    pub fn height(&self) -> usize {
+        self.height
+    }
+
+    /// Number of cells.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.data.len()
+    }
+
+    /// Whether the grid has no cell.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.data.is_empty()
+    }
+
+    /// Whether `cell` lies inside the grid.
+    #[must_use]
+    pub fn contains(&self, cell: Cell) -> bool {
+        cell.row < self.height && cell.col < self.width
+    }
+
+    /// Row-major index of `cell` (which must be inside).
+    #[must_use]
+    pub fn index_of(&self, cell: Cell) -> usize {
+        debug_assert!(self.contains(cell));
+        cell.row * self.width + cell.col
+    }
+
+    /// The cell at row-major index `index`.
+    #[must_use]
+    pub fn cell_of(&self, index: usize) -> Cell {
+        Cell::new(index / self.width, index % self.width)
+    }
+
+    /// The value at `cell`, or `None` outside the grid.
+    #[must_use]
+    pub fn get(&self, cell: Cell) -> Option<&T> {
+        self.contains(cell)
+            .then(|| &self.data[cell.row * self.width + cell.col])
+    }
+
+    /// Mutable access to the value at `cell`, or `None` outside the grid.
+    pub fn get_mut(&mut self, cell: Cell) -> Option<&mut T> {
+        if self.contains(cell) {
+            Some(&mut self.data[cell.row * self.width + cell.col])
+        } else {
+            None
+        }
+    }
+
+    /// The cell one step from `cell` in direction `dir`, if inside the grid.
+    #[must_use]
+    pub fn step(&self, cell: Cell, dir: Dir4) -> Option<Cell> {
+        self.offset(cell, dir.offset())
+    }
+
+    /// The cell at `cell + (drow, dcol)`, if inside the grid.
+    #[must_use]
+    pub fn offset(&self, cell: Cell, (dr, dc): (isize, isize)) -> Option<Cell> {
+        let row = cell.row.checked_add_signed(dr)?;
+        let col = cell.col.checked_add_signed(dc)?;
+        (row < self.height && col < self.width).then_some(Cell::new(row, col))
+    }
+
+    /// The in-grid 4-neighbours of `cell`, in [`Dir4::ALL`] order.
+    pub fn neighbours4(&self, cell: Cell) -> impl Iterator<Item = (Dir4, Cell)> + '_ {
+        Dir4::ALL
+            .into_iter()
+            .filter_map(move |d| self.step(cell, d).map(|c| (d, c)))
+    }
+
+    /// The in-grid 8-neighbours of `cell`, clockwise from north.
+    pub fn neighbours8(&self, cell: Cell) -> impl Iterator<Item = (Dir8, Cell)> + '_ {
+        Dir8::ALL
+            .into_iter()
+            .filter_map(move |d| self.offset(cell, d.offset()).map(|c| (d, c)))
+    }
+
+    /// All cells in row-major order.
+    pub fn cells(&self) -> impl Iterator<Item = Cell> + use<T> {
+        let (w, h) = (self.width, self.height);
+        (0..h).flat_map(move |r| (0..w).map(move |c| Cell::new(r, c)))
+    }
+
+    /// `(cell, value)` pairs in row-major order.
+    pub fn iter(&self) -> impl Iterator<Item = (Cell, &T)> + '_ {
+        let w = self.width;
+        self.data
+            .iter()
+            .enumerate()
+            .map(move |(i, v)| (Cell::new(i / w, i % w), v))
+    }
+
+    /// The values in row-major order.
+    #[must_use]
+    pub fn as_slice(&self) -> &[T] {
+        &self.data
+    }
+
+    /// Mutable values in row-major order.
+    pub fn as_mut_slice(&mut self) -> &mut [T] {
+        &mut self.data
+    }
+
+    /// The values of one row.
+    #[must_use]
+    pub fn row(&self, row: usize) -> &[T] {
+        &self.data[row * self.width..(row + 1) * self.width]
+    }
+
+    /// Unwraps the row-major data.
+    #[must_use]
+    pub fn into_vec(self) -> Vec<T> {
+        self.data
+    }
+
+    /// A grid of the same shape with `f` applied to every value.
+    #[must_use]
+    pub fn map<U>(&self, f: impl FnMut(&T) -> U) -> Grid<U> {
+        Grid {
+            width: self.width,
+            height: self.height,
+            data: self.data.iter().map(f).collect(),
+        }
+    }
+
+    /// Number of cells whose value satisfies `pred`.
+    #[must_use]
+    pub fn count(&self, mut pred: impl FnMut(&T) -> bool) -> usize {
+        self.data.iter().filter(|v| pred(v)).count()
+    }
+}
+
+impl Grid<bool> {
+    /// Number of `true` cells.
+    #[must_use]
+    pub fn count_true(&self) -> usize {
+        self.data.iter().filter(|&&b| b).count()
+    }
+
+    /// Cells that are `true`, row-major.
+    pub fn true_cells(&self) -> impl Iterator<Item = Cell> + '_ {
+        let w = self.width;
+        self.data
+            .iter()
+            .enumerate()
+            .filter(|(_, b)| **b)
+            .map(move |(i, _)| Cell::new(i / w, i % w))
+    }
+
+    /// Whether `cell` is inside and `true`.
+    #[must_use]
+    pub fn is_set(&self, cell: Cell) -> bool {
+        self.get(cell).copied().unwrap_or(false)
+    }
+}
+
+impl<T> Index<Cell> for Grid<T> {
+    type Output = T;
+    fn index(&self, cell: Cell) -> &T {
+        assert!(self.contains(cell), "cell {cell:?} outside grid");
+        &self.data[cell.row * self.width + cell.col]
+    }
+}
+
+impl<T> IndexMut<Cell> for Grid<T> {
+    fn index_mut(&mut self, cell: Cell) -> &mut T {
+        assert!(self.contains(cell), "cell {cell:?} outside grid");
+        &mut self.data[cell.row * self.width + cell.col]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn neighbours_stay_inside_and_follow_order() {
+        let g = Grid::new(3, 2, 0u8);
+        let n: Vec<_> = g.neighbours4(Cell::new(0, 0)).collect();
+        assert_eq!(
+            n,
+            vec![
+                (Dir4::East, Cell::new(0, 1)),
+                (Dir4::South, Cell::new(1, 0))
+            ]
+        );
+        assert_eq!(g.neighbours8(Cell::new(1, 1)).count(), 5);
+        assert_eq!(g.neighbours4(Cell::new(1, 1)).count(), 3);
+    }
+
+    #[test]
+    fn index_round_trip_and_row_major_order() {
+        let g = Grid::from_fn(4, 3, |c| c.row * 10 + c.col);
+        for (i, c) in g.cells().enumerate() {
+            assert_eq!(g.index_of(c), i);
+            assert_eq!(g.cell_of(i), c);
+            assert_eq!(g[c], c.row * 10 + c.col);
+        }
+        assert_eq!(g.row(2), &[20, 21, 22, 23]);
+        assert!(Grid::from_vec(2, 2, vec![1, 2, 3]).is_none());
+    }
+
+    #[test]
+    fn dir_helpers() {
+        for d in Dir4::ALL {
+            assert_eq!(d.opposite().opposite(), d);
+            assert_eq!(Dir4::from_index(d.index()), d);
+            let c = Cell::new(5, 5);
+            let (dr, dc) = d.offset();
+            let n = Cell::new((5 + dr) as usize, (5 + dc) as usize);
+            assert_eq!(c.dir_to(n), Some(d));
+        }
+        assert_eq!(Cell::new(0, 0).dir_to(Cell::new(1, 1)), None);
+        assert_eq!(Dir8::ALL.iter().filter(|d| d.is_diagonal()).count(), 4);
+    }
+}

@@ -1,0 +1,158 @@
+//! Map readers and writers: ROS map_server yaml + PGM/PNG/BMP, plain images,
+//! MovingAI `.map`, and an ASCII format for tests.
+//!
+//! [`read_map`] picks the reader from the file extension (`.yaml`/`.yml`,
+//! `.pgm`/`.png`/`.bmp`, `.map`) and otherwise from the content. Every reader
+//! checks the declared size against [`ReadOptions::max_cells`] before it
+//! allocates, and reports malformed input as an [`Error`] naming the file and
+//! what was expected, never a panic.
+
+mod ascii;
+mod movingai;
+mod pgm;
+mod raster;
+mod ros;
+
+pub use ascii::{parse_ascii, to_ascii};
+pub use movingai::{parse_movingai, read_movingai};
+pub use ros::{MapYaml, Mode, Thresholds, parse_map_yaml, read_ros_yaml, write_ros_map};
+
+use std::path::Path;
+
+use crate::error::{Error, Result, positive};
+use crate::math::Point;
+use crate::occupancy::OccupancyGrid;
+
+/// Default cap on the number of cells a reader will allocate (2^28, i.e. 16384²).
+pub const DEFAULT_MAX_CELLS: usize = 1 << 28;
+
+/// Options shared by the readers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ReadOptions {
+    /// Resolution (m/cell) for images read without a yaml. Default 1.0 (contract).
+    pub resolution: f64,
+    /// Largest map accepted, in cells. Default [`DEFAULT_MAX_CELLS`].
+    pub max_cells: usize,
+}
+
+impl Default for ReadOptions {
+    fn default() -> Self {
+        Self {
+            resolution: 1.0,
+            max_cells: DEFAULT_MAX_CELLS,
+        }
+    }
+}
+
+impl ReadOptions {
+    /// Default options.
+    #[must_use]
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Sets the resolution used for images without a yaml.
+    #[must_use]
+    pub fn resolution(mut self, resolution: f64) -> Self {
+        self.resolution = resolution;
+        self
+    }
+
+    /// Sets the largest map accepted, in cells.
+    #[must_use]
+    pub fn max_cells(mut self, max_cells: usize) -> Self {
+        self.max_cells = max_cells;
+        self
+    }
+}
+
+/// Reads any map input of the contract, choosing the reader by extension, then by content.
+///
+/// # Errors
+/// [`Error`] naming the file and what was wrong: unreadable file, malformed
+/// header or yaml field, truncated data, a map larger than the cell limit.
+pub fn read_map(path: &Path, options: &ReadOptions) -> Result<OccupancyGrid> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .unwrap_or_default();
+    match ext.as_str() {
+        "yaml" | "yml" => read_ros_yaml(path, options),
+        "map" => read_movingai(path, options),
+        _ => {
+            let bytes = read_bytes(path)?;
+            if looks_like_movingai(&bytes) {
+                return parse_movingai(path, &bytes, options);
+            }
+            read_image_bytes(path, &bytes, options)
+        }
+    }
+}
+
+/// Reads a plain image (PGM/PNG/BMP) with the ROS default thresholds, the given
+/// resolution and origin (0, 0).
+///
+/// # Errors
+/// As [`read_map`].
+pub fn read_image(path: &Path, options: &ReadOptions) -> Result<OccupancyGrid> {
+    let bytes = read_bytes(path)?;
+    read_image_bytes(path, &bytes, options)
+}
+
+fn read_image_bytes(path: &Path, bytes: &[u8], options: &ReadOptions) -> Result<OccupancyGrid> {
+    let resolution = positive("--resolution", options.resolution)?;
+    let cells = decode_image(path, bytes, options.max_cells, &Thresholds::default())?;
+    Ok(OccupancyGrid::new(cells, resolution, Point::origin()))
+}
+
+/// Decodes image bytes (PGM P2/P5, PNG, BMP) into occupancy with `thresholds`.
+pub(crate) fn decode_image(
+    path: &Path,
+    bytes: &[u8],
+    max_cells: usize,
+    thresholds: &Thresholds,
+) -> Result<crate::Grid<crate::Occupancy>> {
+    if bytes.is_empty() {
+        return Err(Error::Format {
+            path: path.to_path_buf(),
+            message: "empty file, expected a PGM, PNG or BMP image".into(),
+        });
+    }
+    if bytes[0] == b'P' {
+        pgm::decode(path, bytes, max_cells, |v| thresholds.classify(v))
+    } else {
+        raster::decode(path, bytes, max_cells, |v| thresholds.classify(v))
+    }
+}
+
+pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>> {
+    std::fs::read(path).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+fn looks_like_movingai(bytes: &[u8]) -> bool {
+    bytes.starts_with(b"type ")
+}
+
+/// Checks a declared `width × height` against the cell limit before allocating.
+pub(crate) fn check_size(path: &Path, width: u64, height: u64, max_cells: usize) -> Result<()> {
+    if width == 0 || height == 0 {
+        return Err(Error::EmptyMap {
+            path: path.to_path_buf(),
+            width: width as usize,
+            height: height as usize,
+        });
+    }
+    match width.checked_mul(height) {
+        Some(n) if n <= max_cells as u64 => Ok(()),
+        _ => Err(Error::TooLarge {
+            path: path.to_path_buf(),
+            width,
+            height,
+            limit: max_cells,
+        }),
+    }
+}

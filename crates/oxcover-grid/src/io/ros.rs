@@ -1,0 +1,387 @@
+//! ROS map_server maps: the yaml metadata, the pixel rules, and a writer.
+//!
+//! Pixel value `v` (colour channels averaged, alpha ignored, scaled to 0..=255)
+//! gives `p = (255 − v)/255`, or `v/255` when `negate` is set. Trinary: free if
+//! `p < free_thresh`, occupied if `p > occupied_thresh`, unknown otherwise.
+//! Deviations from map_server, all on purpose (see the contract): alpha is not
+//! averaged in; in `scale` mode the in-between probabilities are *unknown*
+//! (this crate keeps three states and never treats a doubtful cell as free);
+//! in `raw` mode the value is the occupancy itself (0 free, 1..=100 occupied,
+//! anything else unknown).
+
+use std::path::{Path, PathBuf};
+
+use yaml_rust2::{Yaml, YamlLoader};
+
+use super::{ReadOptions, decode_image, read_bytes};
+use crate::error::{Error, Result};
+use crate::math::Point;
+use crate::occupancy::{Occupancy, OccupancyGrid};
+
+/// How pixel values map to occupancy (`mode` in the yaml).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Mode {
+    /// Free / occupied / unknown by the two thresholds (map_server default).
+    #[default]
+    Trinary,
+    /// Like trinary; values between the thresholds are unknown here.
+    Scale,
+    /// The pixel value is the occupancy value.
+    Raw,
+}
+
+/// The pixel-classification part of a map yaml.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Thresholds {
+    /// `negate`: dark means free instead of occupied.
+    pub negate: bool,
+    /// `occupied_thresh`; default 0.65 (map_server).
+    pub occupied_thresh: f64,
+    /// `free_thresh`; default 0.196 (map_server).
+    pub free_thresh: f64,
+    /// `mode`; default trinary.
+    pub mode: Mode,
+}
+
+impl Default for Thresholds {
+    /// The ROS defaults used for images without a yaml: negate 0, 0.65, 0.196, trinary.
+    fn default() -> Self {
+        Self {
+            negate: false,
+            occupied_thresh: 0.65,
+            free_thresh: 0.196,
+            mode: Mode::Trinary,
+        }
+    }
+}
+
+impl Thresholds {
+    /// Classifies an averaged pixel value on the 0..=255 scale.
+    #[must_use]
+    pub fn classify(&self, v: f64) -> Occupancy {
+        match self.mode {
+            Mode::Raw => {
+                let value = if self.negate { 255.0 - v } else { v };
+                let value = value.floor();
+                if value == 0.0 {
+                    Occupancy::Free
+                } else if (1.0..=100.0).contains(&value) {
+                    Occupancy::Occupied
+                } else {
+                    Occupancy::Unknown
+                }
+            }
+            Mode::Trinary | Mode::Scale => {
+                let p = if self.negate {
+                    v / 255.0
+                } else {
+                    (255.0 - v) / 255.0
+                };
+                if p > self.occupied_thresh {
+                    Occupancy::Occupied
+                } else if p < self.free_thresh {
+                    Occupancy::Free
+                } else {
+                    Occupancy::Unknown
+                }
+            }
+        }
+    }
+}
+
+/// The content of a ROS map yaml.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MapYaml {
+    /// Image path, resolved against the yaml's directory.
+    pub image: PathBuf,
+    /// Metres per pixel.
+    pub resolution: f64,
+    /// Lower-left corner of the bottom-left pixel (yaw is required to be 0).
+    pub origin: Point,
+    /// Pixel rules.
+    pub thresholds: Thresholds,
+}
+
+/// Parses the text of a map yaml read from `path` (used for messages and to
+/// resolve the image path).
+///
+/// Required fields, as in map_server: `image`, `resolution`, `origin`, `negate`,
+/// `occupied_thresh`, `free_thresh`; `mode` is optional.
+///
+/// # Errors
+/// [`Error::MissingField`] / [`Error::InvalidField`] naming the field, or
+/// [`Error::Format`] for text that is not a YAML mapping.
+pub fn parse_map_yaml(path: &Path, text: &str) -> Result<MapYaml> {
+    let format = |message: String| Error::Format {
+        path: path.to_path_buf(),
+        message,
+    };
+    let docs = YamlLoader::load_from_str(text).map_err(|e| format(format!("invalid YAML: {e}")))?;
+    let doc = docs.first().ok_or_else(|| {
+        format("empty file, expected a YAML mapping with image, resolution, origin, ...".into())
+    })?;
+    if doc.as_hash().is_none() {
+        return Err(format(
+            "expected a YAML mapping with image, resolution, origin, ...".into(),
+        ));
+    }
+    let missing = |field: &'static str| Error::MissingField {
+        path: path.to_path_buf(),
+        field,
+    };
+    let invalid = |field: &'static str, value: &Yaml, expected: &'static str| Error::InvalidField {
+        path: path.to_path_buf(),
+        field,
+        value: show(value),
+        expected,
+    };
+    let field = |name: &'static str| -> Result<&Yaml> {
+        match &doc[name] {
+            Yaml::BadValue | Yaml::Null => Err(missing(name)),
+            v => Ok(v),
+        }
+    };
+
+    let image = field("image")?;
+    let image = match image {
+        Yaml::String(s) if !s.trim().is_empty() => s.trim().to_string(),
+        v => return Err(invalid("image", v, "a file name")),
+    };
+    let resolution_v = field("resolution")?;
+    let resolution = number(resolution_v)
+        .filter(|r| r.is_finite() && *r > 0.0)
+        .ok_or_else(|| {
+            invalid(
+                "resolution",
+                resolution_v,
+                "a finite number > 0 (metres per pixel)",
+            )
+        })?;
+    let origin_v = field("origin")?;
+    let origin = match origin_v.as_vec() {
+        Some(v) if v.len() == 3 => {
+            let nums: Option<Vec<f64>> = v.iter().map(number).collect();
+            match nums {
+                Some(n) if n.iter().all(|x| x.is_finite()) => n,
+                _ => {
+                    return Err(invalid(
+                        "origin",
+                        origin_v,
+                        "[x, y, yaw] with three finite numbers",
+                    ));
+                }
+            }
+        }
+        _ => {
+            return Err(invalid(
+                "origin",
+                origin_v,
+                "[x, y, yaw] with three finite numbers",
+            ));
+        }
+    };
+    if origin[2] != 0.0 {
+        return Err(invalid(
+            "origin",
+            origin_v,
+            "yaw 0 (rotated maps are not supported: rotate the image instead)",
+        ));
+    }
+    let negate_v = field("negate")?;
+    let negate = match negate_v {
+        Yaml::Integer(0) | Yaml::Boolean(false) => false,
+        Yaml::Integer(1) | Yaml::Boolean(true) => true,
+        v => return Err(invalid("negate", v, "0 or 1")),
+    };
+    let thresh = |name: &'static str| -> Result<f64> {
+        let v = field(name)?;
+        number(v)
+            .filter(|t| (0.0..=1.0).contains(t))
+            .ok_or_else(|| invalid(name, v, "a number in [0, 1]"))
+    };
+    let occupied_thresh = thresh("occupied_thresh")?;
+    let free_thresh = thresh("free_thresh")?;
+    if free_thresh > occupied_thresh {
+        return Err(invalid(
+            "free_thresh",
+            &doc["free_thresh"],
+            "a value <= occupied_thresh",
+        ));
+    }
+    let mode = match &doc["mode"] {
+        Yaml::BadValue | Yaml::Null => Mode::Trinary,
+        Yaml::String(s) => match s.trim() {
+            "trinary" => Mode::Trinary,
+            "scale" => Mode::Scale,
+            "raw" => Mode::Raw,
+            _ => return Err(invalid("mode", &doc["mode"], "trinary, scale or raw")),
+        },
+        v => return Err(invalid("mode", v, "trinary, scale or raw")),
+    };
+
+    let image_path = Path::new(&image);
+    let image = if image_path.is_absolute() {
+        image_path.to_path_buf()
+    } else {
+        path.parent().unwrap_or(Path::new("")).join(image_path)
+    };
+    Ok(MapYaml {
+        image,
+        resolution,
+        origin: Point::new(origin[0], origin[1]),
+        thresholds: Thresholds {
+            negate,
+            occupied_thresh,
+            free_thresh,
+            mode,
+        },
+    })
+}
+
+/// Reads a ROS map yaml and its image.
+///
+/// # Errors
+/// As [`parse_map_yaml`], plus the image's own errors; a missing image is
+/// reported against the yaml's `image` field.
+pub fn read_ros_yaml(path: &Path, options: &ReadOptions) -> Result<OccupancyGrid> {
+    let bytes = read_bytes(path)?;
+    let text = String::from_utf8(bytes).map_err(|_| Error::Format {
+        path: path.to_path_buf(),
+        message: "not UTF-8 text, expected a ROS map yaml".into(),
+    })?;
+    let meta = parse_map_yaml(path, &text)?;
+    let image_bytes = std::fs::read(&meta.image).map_err(|e| Error::Format {
+        path: path.to_path_buf(),
+        message: format!(
+            "field `image` names {}, which cannot be read: {e}",
+            meta.image.display()
+        ),
+    })?;
+    let cells = decode_image(
+        &meta.image,
+        &image_bytes,
+        options.max_cells,
+        &meta.thresholds,
+    )?;
+    Ok(OccupancyGrid::new(cells, meta.resolution, meta.origin))
+}
+
+/// Writes `map` as `<stem>.pgm` (P5, 8 bit) next to `yaml_path`, plus the yaml,
+/// in the form `map_saver` writes: free 254, occupied 0, unknown 205, trinary
+/// thresholds 0.65 / 0.196. ROS tools and [`read_ros_yaml`] read it back to the
+/// same cells.
+///
+/// # Errors
+/// [`Error::Write`] when a file cannot be written, [`Error::Format`] for a yaml
+/// path without a file stem.
+pub fn write_ros_map(map: &OccupancyGrid, yaml_path: &Path) -> Result<()> {
+    let stem = yaml_path
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .ok_or_else(|| Error::Format {
+            path: yaml_path.to_path_buf(),
+            message: "expected a yaml path with a file name".into(),
+        })?;
+    let pgm_name = format!("{stem}.pgm");
+    let pgm_path = yaml_path.with_file_name(&pgm_name);
+    let mut pgm = format!("P5\n# oxcover\n{} {}\n255\n", map.width(), map.height()).into_bytes();
+    pgm.extend(map.cells().as_slice().iter().map(|o| match o {
+        Occupancy::Free => 254u8,
+        Occupancy::Occupied => 0,
+        Occupancy::Unknown => 205,
+    }));
+    let write = |p: &Path, data: &[u8]| {
+        std::fs::write(p, data).map_err(|source| Error::Write {
+            path: p.to_path_buf(),
+            source,
+        })
+    };
+    write(&pgm_path, &pgm)?;
+    let o = map.frame().origin();
+    let yaml = format!(
+        "image: {pgm_name}\nmode: trinary\nresolution: {}\norigin: [{}, {}, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
+        map.resolution(),
+        o.x,
+        o.y
+    );
+    write(yaml_path, yaml.as_bytes())
+}
+
+fn number(v: &Yaml) -> Option<f64> {
+    match v {
+        Yaml::Integer(i) => Some(*i as f64),
+        Yaml::Real(_) => v.as_f64(),
+        _ => None,
+    }
+}
+
+fn show(v: &Yaml) -> String {
+    match v {
+        Yaml::Real(s) => s.clone(),
+        Yaml::Integer(i) => i.to_string(),
+        Yaml::String(s) => format!("`{s}`"),
+        Yaml::Boolean(b) => b.to_string(),
+        Yaml::Array(a) => format!("[{}]", a.iter().map(show).collect::<Vec<_>>().join(", ")),
+        Yaml::Hash(_) => "a mapping".into(),
+        Yaml::Null | Yaml::BadValue => "empty".into(),
+        Yaml::Alias(_) => "an alias".into(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = "image: m.pgm\nresolution: 0.05\norigin: [-1.0, 2, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+
+    #[test]
+    fn parses_a_map_server_yaml() {
+        let m = parse_map_yaml(Path::new("dir/m.yaml"), GOOD).unwrap();
+        assert_eq!(m.image, Path::new("dir/m.pgm"));
+        assert_eq!(m.resolution, 0.05);
+        assert_eq!(m.origin, Point::new(-1.0, 2.0));
+        assert_eq!(m.thresholds, Thresholds::default());
+    }
+
+    #[test]
+    fn classification_matches_map_server() {
+        let t = Thresholds::default();
+        assert_eq!(t.classify(254.0), Occupancy::Free);
+        assert_eq!(t.classify(0.0), Occupancy::Occupied);
+        assert_eq!(t.classify(205.0), Occupancy::Unknown);
+        let n = Thresholds { negate: true, ..t };
+        assert_eq!(n.classify(0.0), Occupancy::Free);
+        assert_eq!(n.classify(255.0), Occupancy::Occupied);
+        let raw = Thresholds {
+            mode: Mode::Raw,
+            ..t
+        };
+        assert_eq!(raw.classify(0.0), Occupancy::Free);
+        assert_eq!(raw.classify(100.0), Occupancy::Occupied);
+        assert_eq!(raw.classify(255.0), Occupancy::Unknown);
+    }
+
+    #[test]
+    fn field_errors_name_the_field() {
+        let cases = [
+            (
+                GOOD.replace("resolution: 0.05\n", ""),
+                "missing field `resolution`",
+            ),
+            (GOOD.replace("0.0]", "0.3]"), "field `origin`"),
+            (GOOD.replace("negate: 0", "negate: 2"), "field `negate`"),
+            (GOOD.replace("0.196", "1.5"), "field `free_thresh`"),
+            (GOOD.replace("0.05", "-0.05"), "field `resolution`"),
+            (GOOD.replace("0.05", ".nan"), "field `resolution`"),
+            (format!("{GOOD}mode: fancy\n"), "field `mode`"),
+            ("[1, 2]".to_string(), "expected a YAML mapping"),
+            ("image: [unclosed".to_string(), "invalid YAML"),
+        ];
+        for (text, want) in cases {
+            let e = parse_map_yaml(Path::new("m.yaml"), &text)
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(want), "{e:?} should contain {want:?}");
+        }
+    }
+}

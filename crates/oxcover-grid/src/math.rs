@@ -1,0 +1,59 @@
+//! Metre-space types shared by the whole workspace.
+//!
+//! Every quantity in metres (waypoints, origins, offsets) uses these aliases on
+//! nalgebra, so algorithms are written once and callers never convert between
+//! point types. Cell-space quantities use [`crate::Cell`] instead.
+
+/// The scalar used for metre-space quantities.
+pub type Real = f64;
+
+/// A point in the map frame, in metres.
+pub type Point = nalgebra::Point2<Real>;
+
+/// A displacement in the map frame, in metres.
+pub type Vector = nalgebra::Vector2<Real>;
+
+/// Builds a [`Point`] from its coordinates.
+#[must_use]
+pub fn point(x: Real, y: Real) -> Point {
+    Point::new(x, y)
+}
+
+/// Heading of a displacement in radians, in `(-pi, pi]`, measured from +x towards +y.
+#[must_use]
+pub fn heading(v: &Vector) -> Real {
+    v.y.atan2(v.x)
+}
+
+/// Wraps an angle to `(-pi, pi]`.
+#[must_use]
+pub fn wrap_angle(a: Real) -> Real {
+    use std::f64::consts::PI;
+    let mut a = a % (2.0 * PI);
+    if a <= -PI {
+        a += 2.0 * PI;
+    } else if a > PI {
+        a -= 2.0 * PI;
+    }
+    a
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn wrap_angle_stays_in_half_open_interval() {
+        assert!((wrap_angle(3.0 * PI) - PI).abs() < 1e-12);
+        assert!((wrap_angle(-PI) - PI).abs() < 1e-12);
+        assert!((wrap_angle(0.5) - 0.5).abs() < 1e-12);
+        assert!((wrap_angle(-0.5 - 2.0 * PI) + 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn heading_of_axes() {
+        assert!((heading(&Vector::new(0.0, 1.0)) - PI / 2.0).abs() < 1e-12);
+        assert!((heading(&Vector::new(-1.0, 0.0)) - PI).abs() < 1e-12);
+    }
+}
