@@ -40,7 +40,7 @@ pub fn cidt(
 ) -> Option<Nearest> {
     let mut found: Option<(u32, Vec<Cell>)> = None;
     wavefront.run(sources, u32::MAX, |layer, d| {
-        let mut hits: Vec<Cell> = layer.iter().copied().filter(|&c| is_target(c)).collect();
+        let mut hits: Vec<Cell> = layer.cells().filter(|&c| is_target(c)).collect();
         if hits.is_empty() {
             return false;
         }

@@ -98,13 +98,15 @@ impl Coverability {
                 let frame = map.frame();
                 let cell = frame.cell_at(&p).ok_or_else(|| {
                     let (lo, hi) = frame.bounds();
+                    // Bounds rounded to the micrometre, so messages read 0.15, not 0.15000000000000002.
+                    let um = |v: f64| (v * 1e6).round() / 1e6;
                     Error::StartOutsideMap {
                         x: p.x,
                         y: p.y,
-                        xmin: lo.x,
-                        xmax: hi.x,
-                        ymin: lo.y,
-                        ymax: hi.y,
+                        xmin: um(lo.x),
+                        xmax: um(hi.x),
+                        ymin: um(lo.y),
+                        ymax: um(hi.y),
                     }
                 })?;
                 if !admissible[cell] {

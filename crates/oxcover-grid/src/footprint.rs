@@ -23,8 +23,11 @@ pub fn for_each_sample(points: &[Point], step: f64, mut f: impl FnMut(&Point)) {
     for w in points.windows(2) {
         let (a, b) = (w[0], w[1]);
         let len = (b - a).norm();
+        // The tolerance keeps a segment of exactly m·step from getting an extra
+        // sample through rounding, so samples of grid-aligned paths fall on the
+        // cell centres they pass.
         let n = if step > 0.0 && len.is_finite() {
-            (len / step).ceil().max(1.0) as usize
+            (len / step - 1e-9).ceil().max(1.0) as usize
         } else {
             1
         };

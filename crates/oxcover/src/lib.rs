@@ -1,1 +1,45 @@
-//! tmp
+//! # oxcover
+//!
+//! Complete coverage path planning, composed end to end: this crate joins the
+//! grid model ([`oxcover_grid`]) and the distance transforms
+//! ([`oxcover_distance`]) into planners, scores paths with the contract's
+//! metrics, draws them, and provides the `oxcover` command line.
+//!
+//! - [`planner`]: the registry and the pipeline (coverage problem → coverage
+//!   grid → planner → boundary pass → metre path).
+//! - [`dtc`]: distance-transform coverage (Zelinsky et al. 1993).
+//! - [`boundary_pass`]: covers what a plan missed along walls (seed 004).
+//! - [`metrics`]: coverage, collisions, length, turns, rotation, redundancy,
+//!   steps, estimated time, exactly as the contract defines them.
+//! - [`path`]: cell paths to metre waypoints; the CSV path file.
+//! - [`render`]: SVG and PNG pictures with a metrics legend.
+//! - [`report`]: the JSON report of `plan --report`.
+//! - [`cli`], [`demo`]: the command line and its no-argument demo.
+//!
+//! ```
+//! use oxcover::planner::{plan, PlanRequest};
+//! use oxcover_grid::io::parse_ascii;
+//!
+//! let (map, _) = parse_ascii("
+//!     ......
+//!     .##...
+//!     ......
+//! ").unwrap();
+//! let outcome = plan(&map, &PlanRequest::new("dtc", map.resolution())).unwrap();
+//! let m = &outcome.evaluation.metrics;
+//! assert_eq!((m.coverage, m.collisions), (1.0, 0));
+//! println!("{}", oxcover::path::to_csv(&outcome.points));
+//! ```
+
+pub mod boundary_pass;
+pub mod cli;
+pub mod demo;
+pub mod dtc;
+pub mod error;
+pub mod metrics;
+pub mod path;
+pub mod planner;
+pub mod render;
+pub mod report;
+
+pub use error::{Error, Result};

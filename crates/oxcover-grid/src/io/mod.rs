@@ -15,7 +15,10 @@ mod ros;
 
 pub use ascii::{parse_ascii, to_ascii};
 pub use movingai::{parse_movingai, read_movingai};
-pub use ros::{MapYaml, Mode, Thresholds, parse_map_yaml, read_ros_yaml, write_ros_map};
+pub use ros::{
+    MapYaml, Mode, Thresholds, parse_map_yaml, read_ros_yaml, read_ros_yaml_from_bytes,
+    write_ros_map,
+};
 
 use std::path::Path;
 

@@ -40,6 +40,13 @@ pub(super) fn decode(
         path: path.to_path_buf(),
         message: format!("corrupt or truncated {name}: {e}"),
     };
+    // PNG keeps its size in the first chunk: check it before the decoder, which
+    // may want more of a file whose header already says it is too large.
+    if format == ImageFormat::Png && bytes.len() >= 24 && &bytes[12..16] == b"IHDR" {
+        let be =
+            |i: usize| u32::from_be_bytes([bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]]);
+        check_size(path, u64::from(be(16)), u64::from(be(20)), max_cells)?;
+    }
     let (w, h) = ImageReader::with_format(Cursor::new(bytes), format)
         .into_dimensions()
         .map_err(corrupt)?;

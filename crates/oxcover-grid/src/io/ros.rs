@@ -266,6 +266,28 @@ pub fn read_ros_yaml(path: &Path, options: &ReadOptions) -> Result<OccupancyGrid
     Ok(OccupancyGrid::new(cells, meta.resolution, meta.origin))
 }
 
+/// Builds a map from a yaml's text and its image's bytes already in memory
+/// (e.g. embedded with `include_bytes!`); `yaml_path` is used in messages and
+/// to name the image.
+///
+/// # Errors
+/// As [`read_ros_yaml`].
+pub fn read_ros_yaml_from_bytes(
+    yaml_path: &Path,
+    yaml_text: &str,
+    image_bytes: &[u8],
+    options: &ReadOptions,
+) -> Result<OccupancyGrid> {
+    let meta = parse_map_yaml(yaml_path, yaml_text)?;
+    let cells = decode_image(
+        &meta.image,
+        image_bytes,
+        options.max_cells,
+        &meta.thresholds,
+    )?;
+    Ok(OccupancyGrid::new(cells, meta.resolution, meta.origin))
+}
+
 /// Writes `map` as `<stem>.pgm` (P5, 8 bit) next to `yaml_path`, plus the yaml,
 /// in the form `map_saver` writes: free 254, occupied 0, unknown 205, trinary
 /// thresholds 0.65 / 0.196. ROS tools and [`read_ros_yaml`] read it back to the

@@ -1,0 +1,222 @@
+//! The boundary pass: cover what a plan left uncovered, typically the strips
+//! along walls and obstacles that a coarse coverage grid cannot reach.
+//!
+//! Seed 004 (Pavlíček et al.) proposes "an additional run of the system along
+//! obstacle boundaries". This module does it for any planner's output:
+//!
+//! 1. Score the plan's polyline exactly as the metrics do (samples every
+//!    resolution/4): the coverable cells it leaves uncovered are *pending*.
+//! 2. Choose *anchors*: greedily, for each pending cell in row-major order not
+//!    yet planned, the plannable cell within the tool radius whose tool disc
+//!    covers the most still-pending cells (ties row-major). Such a cell exists
+//!    for every pending cell by the definition of coverable. Next to walls the
+//!    best anchors are the admissible cells nearest the wall, so the route runs
+//!    along the admissible boundary.
+//! 3. Route: from the plan's last cell, repeatedly go by a shortest path (CIDT
+//!    on the plannable cells) to the nearest anchor whose cells are still
+//!    uncovered, marking what the route covers on the way.
+//!
+//! Every coverable cell ends covered, and every step is a 4-connected move
+//! between plannable cells, so the pass keeps the plan collision-free. It is a
+//! nearest-neighbour tour, not an optimal one: good enough for strips, which is
+//! what it is for.
+
+use oxcover_distance::{Wavefront, cidt};
+use oxcover_grid::footprint::{mark_covered, mark_disc};
+use oxcover_grid::{Cell, Coverability, Grid, MapFrame, Point, TOLERANCE_CELLS};
+
+use crate::error::{Error, Result};
+
+/// What the pass did.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct BoundaryRoute {
+    /// Fine cells to append after the plan's last cell (not repeated here).
+    pub cells: Vec<Cell>,
+    /// Coverable cells the plan left uncovered.
+    pub pending: usize,
+    /// Anchors chosen to cover them.
+    pub anchors: usize,
+}
+
+/// Computes the route that covers the cells `points` leaves uncovered, starting
+/// from the plannable cell `end` (where the plan stops).
+///
+/// # Errors
+/// [`Error::Internal`] if `end` is not plannable or an anchor is unreachable
+/// (neither can happen for a problem built by [`Coverability`]).
+pub fn boundary_pass(
+    frame: &MapFrame,
+    problem: &Coverability,
+    points: &[Point],
+    end: Cell,
+) -> Result<BoundaryRoute> {
+    let plannable = &problem.reachable;
+    if !plannable.is_set(end) {
+        return Err(Error::Internal(format!(
+            "boundary pass starts at {end:?}, which is not plannable"
+        )));
+    }
+    let tool = problem.robot.tool_radius;
+    let mut covered = Grid::new(frame.width(), frame.height(), false);
+    mark_covered(frame, points, tool, &mut covered);
+    let pending: Vec<Cell> = problem
+        .coverable
+        .true_cells()
+        .filter(|&c| !covered[c])
+        .collect();
+    if pending.is_empty() {
+        return Ok(BoundaryRoute {
+            cells: Vec::new(),
+            pending: 0,
+            anchors: 0,
+        });
+    }
+
+    let reach = problem.robot.tool_cells(frame.resolution()) + TOLERANCE_CELLS;
+    let disc = disc_offsets(reach);
+    let mut planned = covered.clone();
+    let mut anchor_of = Grid::new(frame.width(), frame.height(), 0u32);
+    let mut targets: Vec<Vec<Cell>> = Vec::new();
+    let is_pending = |c: Cell, planned: &Grid<bool>| problem.coverable[c] && !planned[c];
+    for &u in &pending {
+        if planned[u] {
+            continue;
+        }
+        let mut best: Option<(usize, Cell)> = None;
+        for &o in &disc {
+            let Some(a) = plannable.offset(u, o) else {
+                continue;
+            };
+            if !plannable[a] {
+                continue;
+            }
+            let gain = disc
+                .iter()
+                .filter_map(|&q| plannable.offset(a, q))
+                .filter(|&v| is_pending(v, &planned))
+                .count();
+            if best.is_none_or(|(g, b)| gain > g || (gain == g && a < b)) {
+                best = Some((gain, a));
+            }
+        }
+        let Some((_, a)) = best else {
+            return Err(Error::Internal(format!(
+                "coverable cell {u:?} has no plannable cell within the tool radius"
+            )));
+        };
+        let cells: Vec<Cell> = disc
+            .iter()
+            .filter_map(|&q| plannable.offset(a, q))
+            .filter(|&v| is_pending(v, &planned))
+            .collect();
+        for &v in &cells {
+            planned[v] = true;
+        }
+        if anchor_of[a] == 0 {
+            targets.push(cells);
+            anchor_of[a] = targets.len() as u32;
+        } else {
+            targets[anchor_of[a] as usize - 1].extend(cells);
+        }
+    }
+    let anchors = targets.len();
+
+    let mut wave = Wavefront::new(plannable);
+    let mut done = vec![false; targets.len()];
+    let mut here = end;
+    let mut route = Vec::new();
+    loop {
+        let near = cidt(&mut wave, &[here], |c| {
+            let id = anchor_of[c] as usize;
+            id != 0 && !done[id - 1] && targets[id - 1].iter().any(|&v| !covered[v])
+        });
+        let Some(near) = near else {
+            break;
+        };
+        let a = near.first();
+        let seg = wave
+            .retrace(a)
+            .ok_or_else(|| Error::Internal("boundary pass retrace failed".into()))?;
+        for &c in &seg[1..] {
+            mark_disc(frame, &frame.cell_center(c), tool, &mut covered);
+        }
+        if seg.len() == 1 {
+            mark_disc(frame, &frame.cell_center(a), tool, &mut covered);
+        }
+        route.extend_from_slice(&seg[1..]);
+        done[anchor_of[a] as usize - 1] = true;
+        here = a;
+    }
+    Ok(BoundaryRoute {
+        cells: route,
+        pending: pending.len(),
+        anchors,
+    })
+}
+
+/// Offsets `(dr, dc)` with `dr² + dc² <= reach²`, row-major.
+fn disc_offsets(reach: f64) -> Vec<(isize, isize)> {
+    let r = reach.floor() as isize;
+    let mut v = Vec::new();
+    for dr in -r..=r {
+        for dc in -r..=r {
+            if ((dr * dr + dc * dc) as f64) <= reach * reach {
+                v.push((dr, dc));
+            }
+        }
+    }
+    v
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::metrics::{MetricParams, evaluate_problem};
+    use crate::path::cells_to_points;
+    use oxcover_grid::io::parse_ascii;
+    use oxcover_grid::{DiscRobot, OccupancyGrid};
+
+    #[test]
+    fn covers_the_strip_a_coarse_lane_misses() {
+        // 0.1 m cells, tool radius 0.1 m (one cell each side). A single lane
+        // through row 2 of a 6-row room misses rows 0 and 4..5.
+        let (m, _) = parse_ascii(
+            "
+            ..........
+            ..........
+            ..........
+            ..........
+            ..........
+            ..........",
+        )
+        .unwrap();
+        let map = OccupancyGrid::new(m.cells().clone(), 0.1, Point::origin());
+        let robot = DiscRobot::new(0.0, 0.1).unwrap();
+        let problem = Coverability::with_start_cell(&map, robot, Cell::new(2, 0)).unwrap();
+        let lane: Vec<Cell> = (0..10).map(|c| Cell::new(2, c)).collect();
+        let pts = cells_to_points(map.frame(), &lane);
+        let before =
+            evaluate_problem(map.frame(), problem.clone(), &pts, &MetricParams::default()).metrics;
+        assert_eq!(before.covered_cells, 30);
+        let r = boundary_pass(map.frame(), &problem, &pts, Cell::new(2, 9)).unwrap();
+        assert_eq!(r.pending, 30);
+        let mut all = lane.clone();
+        all.extend_from_slice(&r.cells);
+        assert!(all.windows(2).all(|w| w[0].manhattan(w[1]) == 1));
+        let pts = cells_to_points(map.frame(), &all);
+        let after = evaluate_problem(map.frame(), problem, &pts, &MetricParams::default()).metrics;
+        assert_eq!(after.coverage, 1.0);
+        assert_eq!(after.collisions, 0);
+    }
+
+    #[test]
+    fn nothing_to_do_on_a_complete_plan() {
+        let (m, s) = parse_ascii("S..").unwrap();
+        let problem =
+            Coverability::with_start_cell(&m, DiscRobot::cell_sized(1.0), s.unwrap()).unwrap();
+        let pts = cells_to_points(m.frame(), &[Cell::new(0, 0), Cell::new(0, 2)]);
+        let r = boundary_pass(m.frame(), &problem, &pts, Cell::new(0, 2)).unwrap();
+        assert_eq!((r.cells.len(), r.pending, r.anchors), (0, 0, 0));
+        assert!(boundary_pass(m.frame(), &problem, &pts, Cell::new(5, 5)).is_err());
+    }
+}

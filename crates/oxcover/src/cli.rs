@@ -1,0 +1,462 @@
+//! The `oxcover` command line (contract: `plan`, `eval`, `render`, `info`,
+//! `planners`; with no command, the demo).
+//!
+//! Exit status: 0 success; 2 bad input or usage, with one line on stderr naming
+//! the file, field or value; 1 an internal fault. Clap's multi-line usage
+//! errors are folded into one line; a panic (always a bug) is reported as one
+//! line and exit 1, never as a backtrace.
+
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand, ValueEnum};
+use oxcover_grid::io::{ReadOptions, read_map};
+use oxcover_grid::{DiscRobot, OccupancyGrid, Point, components4};
+
+use crate::demo;
+use crate::error::{Error, Result};
+use crate::metrics::{MetricParams, evaluate};
+use crate::path::{read_csv, write_csv};
+use crate::planner::{PLANNERS, PlanRequest, plan};
+use crate::render::{Scene, render_to_file};
+use crate::report::{PlanParameters, PlanReport, metric_rows, table};
+
+#[derive(Debug, Parser)]
+#[command(
+    name = "oxcover",
+    version,
+    about = "Complete coverage path planning on occupancy grids.",
+    long_about = "Complete coverage path planning on occupancy grids.\n\n\
+        Maps: ROS map_server yaml (+ PGM/PNG/BMP), plain PGM/PNG/BMP images, MovingAI .map.\n\
+        Units are metres in the ROS map frame. Run without a command for a demo on a bundled map.\n\
+        Exit status: 0 ok, 2 bad input or usage, 1 internal fault."
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Plan a coverage path and write it as CSV, pictures and a JSON report.
+    Plan(PlanArgs),
+    /// Score a path file: print the contract's metrics as one JSON object.
+    Eval(EvalArgs),
+    /// Draw a map, optionally with a path, as SVG or PNG.
+    Render(RenderArgs),
+    /// Describe a map: size, frame, cell counts, components, default start.
+    Info(InfoArgs),
+    /// List the planners.
+    Planners,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum OnOff {
+    On,
+    Off,
+}
+
+#[derive(Debug, clap::Args)]
+struct RobotArgs {
+    /// Robot body radius in metres [default: 0].
+    #[arg(long, value_name = "R", allow_negative_numbers = true)]
+    robot_radius: Option<f64>,
+    /// Tool (cleaning/sensing) radius in metres [default: resolution / 2].
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    tool_radius: Option<f64>,
+    /// Resolution in m/cell for images read without a yaml [default: 1.0].
+    #[arg(long, value_name = "M", allow_negative_numbers = true)]
+    resolution: Option<f64>,
+}
+
+#[derive(Debug, clap::Args)]
+struct PlanArgs {
+    /// Map file (.yaml, .pgm, .png, .bmp or .map).
+    map: PathBuf,
+    /// Planner name (see `oxcover planners`).
+    #[arg(long, value_name = "NAME")]
+    planner: String,
+    #[command(flatten)]
+    robot: RobotArgs,
+    /// Start position in metres [default: first admissible cell, row-major].
+    #[arg(long, value_name = "X,Y", value_parser = parse_start, allow_hyphen_values = true)]
+    start: Option<Point>,
+    /// Seed for randomised planners.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    seed: u64,
+    /// Append a pass along obstacle boundaries covering what the planner missed.
+    #[arg(long, value_enum, value_name = "on|off", default_value_t = OnOff::On)]
+    boundary_pass: OnOff,
+    /// Path file to write (CSV, header x,y).
+    #[arg(long, value_name = "PATH.csv")]
+    out: Option<PathBuf>,
+    /// SVG picture to write.
+    #[arg(long, value_name = "F.svg")]
+    svg: Option<PathBuf>,
+    /// PNG picture to write.
+    #[arg(long, value_name = "F.png")]
+    png: Option<PathBuf>,
+    /// JSON report to write (metrics, planner, parameters, plan_ms).
+    #[arg(long, value_name = "F.json")]
+    report: Option<PathBuf>,
+}
+
+#[derive(Debug, clap::Args)]
+struct EvalArgs {
+    /// Map file.
+    map: PathBuf,
+    /// Path file (CSV with header x,y).
+    path: PathBuf,
+    #[command(flatten)]
+    robot: RobotArgs,
+}
+
+#[derive(Debug, clap::Args)]
+struct RenderArgs {
+    /// Map file.
+    map: PathBuf,
+    /// Optional path file to draw (with its coverage).
+    path: Option<PathBuf>,
+    /// Output picture, .svg or .png.
+    #[arg(long, value_name = "F.svg|F.png")]
+    out: PathBuf,
+    #[command(flatten)]
+    robot: RobotArgs,
+}
+
+#[derive(Debug, clap::Args)]
+struct InfoArgs {
+    /// Map file.
+    map: PathBuf,
+    /// Resolution in m/cell for images read without a yaml [default: 1.0].
+    #[arg(long, value_name = "M", allow_negative_numbers = true)]
+    resolution: Option<f64>,
+}
+
+fn parse_start(s: &str) -> std::result::Result<Point, String> {
+    let err = || format!("expected X,Y in metres (e.g. 1.5,-2), got `{s}`");
+    let (x, y) = s.split_once(',').ok_or_else(err)?;
+    let x: f64 = x.trim().parse().map_err(|_| err())?;
+    let y: f64 = y.trim().parse().map_err(|_| err())?;
+    if x.is_finite() && y.is_finite() {
+        Ok(Point::new(x, y))
+    } else {
+        Err(format!("expected finite X,Y in metres, got `{s}`"))
+    }
+}
+
+/// Runs the command line with the process arguments; returns the exit status.
+#[must_use]
+pub fn main() -> ExitCode {
+    std::panic::set_hook(Box::new(|info| {
+        let msg = info.to_string().replace('\n', " ");
+        let _ = writeln!(std::io::stderr(), "oxcover: internal error: {msg}");
+    }));
+    let code = std::panic::catch_unwind(|| run(std::env::args_os())).unwrap_or(1);
+    ExitCode::from(code)
+}
+
+/// Runs the command line on `args` (first item: program name); returns the exit status.
+pub fn run<I, T>(args: I) -> u8
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    let cli = match Cli::try_parse_from(args) {
+        Ok(cli) => cli,
+        Err(e) => return clap_error(&e),
+    };
+    let result = match cli.command {
+        None => demo::run(),
+        Some(Command::Plan(a)) => cmd_plan(&a),
+        Some(Command::Eval(a)) => cmd_eval(&a),
+        Some(Command::Render(a)) => cmd_render(&a),
+        Some(Command::Info(a)) => cmd_info(&a),
+        Some(Command::Planners) => {
+            cmd_planners();
+            Ok(())
+        }
+    };
+    match result {
+        Ok(()) => 0,
+        Err(e) => {
+            let _ = writeln!(
+                std::io::stderr(),
+                "oxcover: error: {}",
+                e.to_string().replace('\n', " ")
+            );
+            e.exit_code()
+        }
+    }
+}
+
+fn clap_error(e: &clap::Error) -> u8 {
+    use clap::error::ErrorKind;
+    match e.kind() {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
+            let _ = write!(std::io::stdout(), "{e}");
+            0
+        }
+        _ => {
+            let text = e.render().to_string();
+            let line: Vec<&str> = text
+                .lines()
+                .map(str::trim)
+                .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information"))
+                .filter(|l| !l.is_empty())
+                .collect();
+            let line = line.join(" ");
+            let line = line.strip_prefix("error: ").unwrap_or(&line);
+            let _ = writeln!(std::io::stderr(), "oxcover: error: {line} (see --help)");
+            2
+        }
+    }
+}
+
+fn read_options(resolution: Option<f64>) -> Result<ReadOptions> {
+    let mut o = ReadOptions::default();
+    if let Some(r) = resolution {
+        o = o.resolution(oxcover_grid::error::positive("--resolution", r)?);
+    }
+    Ok(o)
+}
+
+fn load(map: &Path, resolution: Option<f64>) -> Result<OccupancyGrid> {
+    Ok(read_map(map, &read_options(resolution)?)?)
+}
+
+fn robot_of(args: &RobotArgs, map: &OccupancyGrid) -> Result<DiscRobot> {
+    let res = map.resolution();
+    Ok(DiscRobot::new(
+        args.robot_radius.unwrap_or(0.0),
+        args.tool_radius.unwrap_or(res / 2.0),
+    )?)
+}
+
+fn cmd_plan(a: &PlanArgs) -> Result<()> {
+    crate::planner::find_planner(&a.planner)?;
+    let map = load(&a.map, a.robot.resolution)?;
+    let robot = robot_of(&a.robot, &map)?;
+    let request = PlanRequest {
+        planner: a.planner.clone(),
+        robot,
+        start: a.start,
+        seed: a.seed,
+        boundary_pass: a.boundary_pass == OnOff::On,
+    };
+    let outcome = plan(&map, &request)?;
+    let name = a.map.display().to_string();
+    let written = write_plan_outputs(
+        &map,
+        &name,
+        &request,
+        &outcome,
+        &Outputs {
+            csv: a.out.as_deref(),
+            svg: a.svg.as_deref(),
+            png: a.png.as_deref(),
+            report: a.report.as_deref(),
+        },
+    )?;
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(
+        out,
+        "{} on {} ({}x{} cells, {} m/cell): {} waypoints in {:.0} ms",
+        request.planner,
+        name,
+        map.width(),
+        map.height(),
+        map.resolution(),
+        outcome.points.len(),
+        outcome.plan_ms
+    );
+    let mut rows = metric_rows(&outcome.evaluation.metrics);
+    rows.insert(
+        1,
+        (
+            "coverage (no boundary pass)".into(),
+            format!("{:.4}", outcome.coverage_without_boundary_pass),
+        ),
+    );
+    let _ = write!(out, "{}", table(&rows));
+    for w in written {
+        let _ = writeln!(out, "wrote {}", w.display());
+    }
+    let free = map.counts().free;
+    let coverable = outcome.evaluation.metrics.coverable_cells;
+    if coverable < free {
+        let _ = writeln!(
+            std::io::stderr(),
+            "note: {} of {free} free cells are not coverable (not reachable from the start, or too close to obstacles for this robot and tool) and are not counted",
+            free - coverable
+        );
+    }
+    Ok(())
+}
+
+/// Where to write a plan's outputs (each optional).
+pub(crate) struct Outputs<'a> {
+    pub(crate) csv: Option<&'a Path>,
+    pub(crate) svg: Option<&'a Path>,
+    pub(crate) png: Option<&'a Path>,
+    pub(crate) report: Option<&'a Path>,
+}
+
+/// Writes the CSV, pictures and report of a plan; returns the files written.
+pub(crate) fn write_plan_outputs(
+    map: &OccupancyGrid,
+    map_name: &str,
+    request: &PlanRequest,
+    outcome: &crate::planner::PlanOutcome,
+    out: &Outputs<'_>,
+) -> Result<Vec<PathBuf>> {
+    let mut written = Vec::new();
+    if let Some(p) = out.csv {
+        write_csv(p, &outcome.points)?;
+        written.push(p.to_path_buf());
+    }
+    let ev = &outcome.evaluation;
+    let title = format!("{} - {}", short_name(map_name), request.planner);
+    let scene = Scene {
+        map,
+        path: &outcome.points,
+        covered: Some(&ev.covered),
+        coverable: Some(&ev.problem.coverable),
+        title,
+        rows: metric_rows(&ev.metrics),
+    };
+    for p in [out.svg, out.png].into_iter().flatten() {
+        render_to_file(&scene, p)?;
+        written.push(p.to_path_buf());
+    }
+    if let Some(p) = out.report {
+        let start = outcome
+            .points
+            .first()
+            .copied()
+            .unwrap_or_else(Point::origin);
+        let params = PlanParameters {
+            map: map_name.to_string(),
+            robot_radius: request.robot.robot_radius,
+            tool_radius: request.robot.tool_radius,
+            resolution: map.resolution(),
+            start: [start.x, start.y],
+            seed: request.seed,
+            boundary_pass: request.boundary_pass,
+            coverage_cell_m: outcome.coarse_block as f64 * map.resolution(),
+        };
+        let report = PlanReport::new(&request.planner, params, outcome);
+        let json = serde_json::to_string_pretty(&report)
+            .map_err(|e| Error::Internal(format!("report serialisation failed: {e}")))?;
+        std::fs::write(p, json + "\n").map_err(|e| Error::write(p, e))?;
+        written.push(p.to_path_buf());
+    }
+    Ok(written)
+}
+
+fn short_name(path: &str) -> String {
+    Path::new(path)
+        .file_name()
+        .map_or_else(|| path.to_string(), |n| n.to_string_lossy().into_owned())
+}
+
+fn cmd_eval(a: &EvalArgs) -> Result<()> {
+    let map = load(&a.map, a.robot.resolution)?;
+    let robot = robot_of(&a.robot, &map)?;
+    let points = read_csv(&a.path)?;
+    let ev = evaluate(&map, robot, &points, &MetricParams::default())?;
+    let json = serde_json::to_string_pretty(&ev.metrics)
+        .map_err(|e| Error::Internal(format!("metrics serialisation failed: {e}")))?;
+    let _ = writeln!(std::io::stdout(), "{json}");
+    Ok(())
+}
+
+fn cmd_render(a: &RenderArgs) -> Result<()> {
+    let map = load(&a.map, a.robot.resolution)?;
+    let name = short_name(&a.map.display().to_string());
+    match &a.path {
+        Some(path_file) => {
+            let robot = robot_of(&a.robot, &map)?;
+            let points = read_csv(path_file)?;
+            let ev = evaluate(&map, robot, &points, &MetricParams::default())?;
+            let scene = Scene {
+                map: &map,
+                path: &points,
+                covered: Some(&ev.covered),
+                coverable: Some(&ev.problem.coverable),
+                title: format!("{name} - {}", short_name(&path_file.display().to_string())),
+                rows: metric_rows(&ev.metrics),
+            };
+            render_to_file(&scene, &a.out)?;
+        }
+        None => {
+            let scene = Scene {
+                map: &map,
+                path: &[],
+                covered: None,
+                coverable: None,
+                title: name,
+                rows: map_rows(&map),
+            };
+            render_to_file(&scene, &a.out)?;
+        }
+    }
+    let _ = writeln!(std::io::stdout(), "wrote {}", a.out.display());
+    Ok(())
+}
+
+fn map_rows(map: &OccupancyGrid) -> Vec<(String, String)> {
+    let c = map.counts();
+    vec![
+        ("size".into(), format!("{}x{}", map.width(), map.height())),
+        ("resolution".into(), format!("{} m", map.resolution())),
+        ("free".into(), c.free.to_string()),
+        ("occupied".into(), c.occupied.to_string()),
+        ("unknown".into(), c.unknown.to_string()),
+    ]
+}
+
+fn cmd_info(a: &InfoArgs) -> Result<()> {
+    let map = load(&a.map, a.resolution)?;
+    let f = map.frame();
+    let (lo, hi) = f.bounds();
+    let free = map.free_mask();
+    let comps = components4(&free);
+    let mut rows = map_rows(&map);
+    rows.push(("origin".into(), format!("({}, {})", lo.x, lo.y)));
+    rows.push((
+        "extent".into(),
+        format!("x {}..{}, y {}..{}", lo.x, hi.x, lo.y, hi.y),
+    ));
+    rows.push(("free components".into(), comps.count().to_string()));
+    if let Some(l) = comps.largest() {
+        rows.push((
+            "largest component".into(),
+            comps.sizes[l as usize - 1].to_string(),
+        ));
+    }
+    if let Some(s) = free.true_cells().next() {
+        let p = f.cell_center(s);
+        rows.push(("default start".into(), format!("{},{}", p.x, p.y)));
+    }
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(out, "{}", a.map.display());
+    let _ = write!(out, "{}", table(&rows));
+    Ok(())
+}
+
+fn cmd_planners() {
+    let mut out = std::io::stdout().lock();
+    let w = PLANNERS.iter().map(|p| p.name.len()).max().unwrap_or(4);
+    let _ = writeln!(out, "{:<w$}  complete  description", "name");
+    for p in PLANNERS {
+        let _ = writeln!(
+            out,
+            "{:<w$}  {:<8}  {}",
+            p.name,
+            if p.complete { "yes" } else { "no" },
+            p.summary
+        );
+    }
+}

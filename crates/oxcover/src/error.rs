@@ -1,0 +1,76 @@
+//! The integration crate's error type and its exit statuses.
+
+use std::path::PathBuf;
+
+/// Errors of planning, evaluation, rendering and the command line.
+///
+/// [`Error::exit_code`] follows the contract: 2 for bad input or usage (with one
+/// line naming the file, field or value), 1 for an internal fault.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// A map could not be read or a coverage problem could not be built.
+    #[error(transparent)]
+    Map(#[from] oxcover_grid::Error),
+    /// A path file is malformed.
+    #[error("{}: line {line}: {message}", path.display())]
+    PathFile {
+        /// The CSV file.
+        path: PathBuf,
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong and what was expected.
+        message: String,
+    },
+    /// A command-line value cannot be used.
+    #[error("{name} is `{value}`, expected {expected}")]
+    Argument {
+        /// The option.
+        name: &'static str,
+        /// The value given.
+        value: String,
+        /// What is accepted.
+        expected: String,
+    },
+    /// An input file could not be read.
+    #[error("{}: cannot read: {source}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// The operating system's reason.
+        source: std::io::Error,
+    },
+    /// An output file could not be written.
+    #[error("{}: cannot write: {source}", path.display())]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// The operating system's reason.
+        source: std::io::Error,
+    },
+    /// A planner broke one of its own guarantees: a bug, reported as exit 1.
+    #[error("internal error: {0}")]
+    Internal(String),
+}
+
+impl Error {
+    /// Exit status for this error: 2 for bad input or usage, 1 for internal faults.
+    #[must_use]
+    pub fn exit_code(&self) -> u8 {
+        if matches!(self, Error::Internal(_)) {
+            1
+        } else {
+            2
+        }
+    }
+
+    pub(crate) fn write(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        Error::Write {
+            path: path.into(),
+            source,
+        }
+    }
+}
+
+/// Shorthand for results of this crate.
+pub type Result<T, E = Error> = std::result::Result<T, E>;

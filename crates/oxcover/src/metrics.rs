@@ -1,0 +1,311 @@
+//! Path metrics exactly as the contract defines them (CLI, experiments, tests).
+//!
+//! | key | meaning |
+//! |---|---|
+//! | `coverage` | covered coverable cells / coverable cells (path sampled every resolution/4) |
+//! | `collisions` | path samples whose cell is not admissible |
+//! | `length_m` | polyline length |
+//! | `turns` | vertices whose heading changes by more than 30° (segments shorter than resolution/4 merged first) |
+//! | `rotation_rad` | sum of absolute heading changes (same merged polyline) |
+//! | `redundancy` | `length_m · 2T / covered area` (1.0 = no overlap; `null` when nothing is covered) |
+//! | `steps` | `length_m / resolution` |
+//! | `est_time_s` | `length_m / v + rotation_rad / w`, v = 0.3 m/s, w = 0.52 rad/s unless set |
+//!
+//! The coverable set is the contract's, built from the path's first waypoint as
+//! the start. "Covered area" is the number of covered coverable cells times the
+//! cell area. Merging short segments: walking the waypoints, a vertex is kept
+//! only when it lies at least resolution/4 from the last kept one; the final
+//! waypoint always ends the merged polyline.
+
+use oxcover_grid::footprint::{for_each_sample, mark_disc};
+use oxcover_grid::math::{heading, wrap_angle};
+use oxcover_grid::{Coverability, DiscRobot, Grid, MapFrame, OccupancyGrid, Point};
+use serde::Serialize;
+
+use crate::error::Result;
+
+/// Speeds used for `est_time_s`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct MetricParams {
+    /// Linear speed v in m/s. Default 0.3 (contract).
+    pub linear_speed: f64,
+    /// Turning rate w in rad/s. Default 0.52 (contract).
+    pub angular_speed: f64,
+}
+
+impl Default for MetricParams {
+    fn default() -> Self {
+        Self {
+            linear_speed: 0.3,
+            angular_speed: 0.52,
+        }
+    }
+}
+
+/// The contract's metrics of one path, plus the counts behind them.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Metrics {
+    /// Covered coverable cells / coverable cells.
+    pub coverage: f64,
+    /// Samples whose cell is not admissible.
+    pub collisions: usize,
+    /// Polyline length in metres.
+    pub length_m: f64,
+    /// Vertices turning by more than 30°.
+    pub turns: usize,
+    /// Sum of absolute heading changes in radians.
+    pub rotation_rad: f64,
+    /// `length · 2T / covered area`; `None` (JSON null) when nothing is covered.
+    pub redundancy: Option<f64>,
+    /// `length / resolution`.
+    pub steps: f64,
+    /// `length / v + rotation / w` in seconds.
+    pub est_time_s: f64,
+    /// Covered coverable cells.
+    pub covered_cells: usize,
+    /// Coverable cells.
+    pub coverable_cells: usize,
+    /// Samples taken along the path.
+    pub samples: usize,
+    /// Waypoints in the path.
+    pub waypoints: usize,
+}
+
+/// Metrics together with the covered-cell mask (for rendering).
+#[derive(Clone, Debug)]
+pub struct Evaluation {
+    /// The metrics.
+    pub metrics: Metrics,
+    /// Cells whose centre lies within the tool radius of a sample.
+    pub covered: Grid<bool>,
+    /// The coverage problem the path was scored against.
+    pub problem: Coverability,
+}
+
+/// Scores `points` on `map` for `robot`, the first waypoint being the start.
+///
+/// # Errors
+/// Bad map or radii, an empty path, or a first waypoint that is outside the map
+/// or not admissible (the contract's start rules).
+pub fn evaluate(
+    map: &OccupancyGrid,
+    robot: DiscRobot,
+    points: &[Point],
+    params: &MetricParams,
+) -> Result<Evaluation> {
+    let start = points.first().copied();
+    let Some(start) = start else {
+        return Err(crate::Error::Argument {
+            name: "path",
+            value: "empty".into(),
+            expected: "at least one waypoint".into(),
+        });
+    };
+    let problem = Coverability::new(map, robot, Some(start))?;
+    Ok(evaluate_problem(map.frame(), problem, points, params))
+}
+
+/// Scores `points` against an existing coverage problem (its start should be
+/// the cell of the first waypoint).
+#[must_use]
+pub fn evaluate_problem(
+    frame: &MapFrame,
+    problem: Coverability,
+    points: &[Point],
+    params: &MetricParams,
+) -> Evaluation {
+    let res = frame.resolution();
+    let tool = problem.robot.tool_radius;
+    let mut covered = Grid::new(frame.width(), frame.height(), false);
+    let mut samples = 0usize;
+    let mut collisions = 0usize;
+    for_each_sample(points, res / 4.0, |p| {
+        samples += 1;
+        if !frame.cell_at(p).is_some_and(|c| problem.admissible[c]) {
+            collisions += 1;
+        }
+        mark_disc(frame, p, tool, &mut covered);
+    });
+    let coverable_cells = problem.coverable_count();
+    let covered_cells = covered
+        .as_slice()
+        .iter()
+        .zip(problem.coverable.as_slice())
+        .filter(|(a, b)| **a && **b)
+        .count();
+    let shape = PathShape::of(points, res);
+    let covered_area = covered_cells as f64 * res * res;
+    let metrics = Metrics {
+        coverage: if coverable_cells == 0 {
+            0.0
+        } else {
+            covered_cells as f64 / coverable_cells as f64
+        },
+        collisions,
+        length_m: shape.length_m,
+        turns: shape.turns,
+        rotation_rad: shape.rotation_rad,
+        redundancy: (covered_area > 0.0).then(|| shape.length_m * 2.0 * tool / covered_area),
+        steps: shape.length_m / res,
+        est_time_s: shape.length_m / params.linear_speed
+            + shape.rotation_rad / params.angular_speed,
+        covered_cells,
+        coverable_cells,
+        samples,
+        waypoints: points.len(),
+    };
+    Evaluation {
+        metrics,
+        covered,
+        problem,
+    }
+}
+
+/// Length and turning of a polyline, as the metrics define them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PathShape {
+    /// Polyline length in metres.
+    pub length_m: f64,
+    /// Vertices turning by more than 30° after merging short segments.
+    pub turns: usize,
+    /// Sum of absolute heading changes after merging short segments.
+    pub rotation_rad: f64,
+}
+
+impl PathShape {
+    /// Measures `points` with short segments (< `resolution / 4`) merged.
+    #[must_use]
+    pub fn of(points: &[Point], resolution: f64) -> Self {
+        let length_m = points.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
+        let min_seg = resolution / 4.0;
+        let mut merged: Vec<Point> = Vec::with_capacity(points.len());
+        for p in points {
+            match merged.last() {
+                None => merged.push(*p),
+                Some(last) if (p - last).norm() >= min_seg => merged.push(*p),
+                Some(_) => {}
+            }
+        }
+        if let (Some(&end), Some(&last)) = (points.last(), merged.last()) {
+            let n = merged.len();
+            if n > 1 && last != end {
+                merged[n - 1] = end;
+            } else if n == 1 && (end - last).norm() > 0.0 {
+                merged.push(end);
+            }
+        }
+        let mut turns = 0;
+        let mut rotation_rad = 0.0;
+        let headings: Vec<f64> = merged.windows(2).map(|w| heading(&(w[1] - w[0]))).collect();
+        for h in headings.windows(2) {
+            let d = wrap_angle(h[1] - h[0]).abs();
+            rotation_rad += d;
+            if d > std::f64::consts::FRAC_PI_6 + 1e-12 {
+                turns += 1;
+            }
+        }
+        Self {
+            length_m,
+            turns,
+            rotation_rad,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use oxcover_grid::Cell;
+    use oxcover_grid::io::parse_ascii;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn shape_of_a_u_turn() {
+        let pts = [
+            Point::new(0.5, 0.5),
+            Point::new(3.5, 0.5),
+            Point::new(3.5, 1.5),
+            Point::new(0.5, 1.5),
+        ];
+        let s = PathShape::of(&pts, 1.0);
+        assert_eq!(s.length_m, 7.0);
+        assert_eq!(s.turns, 2);
+        assert!((s.rotation_rad - PI).abs() < 1e-12);
+        // A jog shorter than resolution/4 is merged away.
+        let jog = [
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(1.0, 0.1),
+            Point::new(2.0, 0.1),
+        ];
+        assert_eq!(PathShape::of(&jog, 1.0).turns, 0);
+    }
+
+    #[test]
+    fn metrics_of_a_complete_boustrophedon() {
+        let (map, _) = parse_ascii(
+            "
+            ....
+            ....",
+        )
+        .unwrap();
+        let f = *map.frame();
+        let cells = [(0, 0), (0, 3), (1, 3), (1, 0)].map(Cell::from);
+        let pts: Vec<Point> = cells.iter().map(|&c| f.cell_center(c)).collect();
+        let e = evaluate(
+            &map,
+            DiscRobot::cell_sized(1.0),
+            &pts,
+            &MetricParams::default(),
+        )
+        .unwrap();
+        let m = e.metrics;
+        assert_eq!(m.coverage, 1.0);
+        assert_eq!(m.collisions, 0);
+        assert_eq!(m.length_m, 7.0);
+        assert_eq!(m.steps, 7.0);
+        assert_eq!(m.turns, 2);
+        assert_eq!(m.redundancy, Some(7.0 / 8.0));
+        assert!((m.est_time_s - (7.0 / 0.3 + PI / 0.52)).abs() < 1e-9);
+        assert_eq!(m.samples, 1 + 12 + 4 + 12);
+    }
+
+    #[test]
+    fn collisions_count_samples_in_walls() {
+        let (map, _) = parse_ascii("...\n.#.\n...").unwrap();
+        let f = *map.frame();
+        let pts = [
+            f.cell_center(Cell::new(1, 0)),
+            f.cell_center(Cell::new(1, 2)),
+        ];
+        let m = evaluate(
+            &map,
+            DiscRobot::cell_sized(1.0),
+            &pts,
+            &MetricParams::default(),
+        )
+        .unwrap()
+        .metrics;
+        // Samples at 0.5 + k/4 for k = 0..=8; those with x in [1, 2) are in the wall.
+        assert_eq!(m.collisions, 4);
+        assert!(
+            evaluate(
+                &map,
+                DiscRobot::cell_sized(1.0),
+                &[],
+                &MetricParams::default()
+            )
+            .is_err()
+        );
+        let wall = [f.cell_center(Cell::new(1, 1))];
+        assert!(
+            evaluate(
+                &map,
+                DiscRobot::cell_sized(1.0),
+                &wall,
+                &MetricParams::default()
+            )
+            .is_err()
+        );
+    }
+}

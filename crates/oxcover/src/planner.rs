@@ -1,0 +1,223 @@
+//! The planner registry and the plan pipeline: map + robot + start → metre path.
+//!
+//! Pipeline: build the contract's coverage problem ([`Coverability`]); group the
+//! plannable cells into coverage cells one tool diameter wide ([`CoarseGrid`],
+//! block = `max(1, floor(2T / resolution))` cells, so lanes one block apart
+//! leave no gap); run the planner; append the [boundary pass](crate::boundary_pass)
+//! unless turned off; convert the fine cell path to metre waypoints.
+
+use std::time::Instant;
+
+use oxcover_grid::{
+    Cell, CoarseGrid, Coverability, DiscRobot, OccupancyGrid, Point, TOLERANCE_CELLS,
+};
+use serde::Serialize;
+
+use crate::boundary_pass::{BoundaryRoute, boundary_pass};
+use crate::dtc::{DtcParams, dtc};
+use crate::error::{Error, Result};
+use crate::metrics::{Evaluation, MetricParams, evaluate_problem};
+use crate::path::cells_to_points;
+
+/// A registered planner.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct PlannerInfo {
+    /// Name used on the command line.
+    pub name: &'static str,
+    /// Whether it promises to cover every coverable cell (with the boundary pass).
+    pub complete: bool,
+    /// One-line description with its source.
+    pub summary: &'static str,
+}
+
+/// Every planner `plan --planner` accepts.
+pub const PLANNERS: &[PlannerInfo] = &[PlannerInfo {
+    name: "dtc",
+    complete: true,
+    summary: "distance-transform coverage, Zelinsky et al. 1993: climb the wavefront from the farthest goal",
+}];
+
+/// Looks a planner up by name.
+///
+/// # Errors
+/// [`Error::Argument`] listing the known names.
+pub fn find_planner(name: &str) -> Result<&'static PlannerInfo> {
+    PLANNERS
+        .iter()
+        .find(|p| p.name == name)
+        .ok_or_else(|| Error::Argument {
+            name: "--planner",
+            value: name.to_string(),
+            expected: format!(
+                "one of: {}",
+                PLANNERS
+                    .iter()
+                    .map(|p| p.name)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        })
+}
+
+/// What to plan.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlanRequest {
+    /// Planner name (see [`PLANNERS`]).
+    pub planner: String,
+    /// Robot and tool.
+    pub robot: DiscRobot,
+    /// Start in metres; `None` = first admissible cell (contract).
+    pub start: Option<Point>,
+    /// Seed for randomised planners (recorded for all).
+    pub seed: u64,
+    /// Append the boundary pass. Default on.
+    pub boundary_pass: bool,
+}
+
+impl PlanRequest {
+    /// A request with the contract's defaults for a map of `resolution`.
+    #[must_use]
+    pub fn new(planner: &str, resolution: f64) -> Self {
+        Self {
+            planner: planner.to_string(),
+            robot: DiscRobot::cell_sized(resolution),
+            start: None,
+            seed: 0,
+            boundary_pass: true,
+        }
+    }
+}
+
+/// The result of [`plan`].
+#[derive(Clone, Debug)]
+pub struct PlanOutcome {
+    /// Metre waypoints (the path file).
+    pub points: Vec<Point>,
+    /// The fine cell path behind them.
+    pub cells: Vec<Cell>,
+    /// Scores of the final path.
+    pub evaluation: Evaluation,
+    /// Coverage of the planner's own path, before the boundary pass.
+    pub coverage_without_boundary_pass: f64,
+    /// What the boundary pass did, if it ran.
+    pub boundary: Option<BoundaryRoute>,
+    /// Fine cells per coverage-cell side.
+    pub coarse_block: usize,
+    /// Planning time in milliseconds (problem, planner, boundary pass).
+    pub plan_ms: f64,
+}
+
+/// Coverage-cell side in fine cells for a tool radius: one tool diameter.
+#[must_use]
+pub fn coarse_block(robot: &DiscRobot, resolution: f64) -> usize {
+    let k = (2.0 * robot.tool_radius / resolution + TOLERANCE_CELLS).floor();
+    if k.is_finite() && k >= 1.0 {
+        k as usize
+    } else {
+        1
+    }
+}
+
+/// Plans a coverage path on `map`.
+///
+/// # Errors
+/// Unknown planner, bad radii or start ([`oxcover_grid::Error`]), or an
+/// internal fault of a planner.
+pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
+    let info = find_planner(&request.planner)?;
+    let t0 = Instant::now();
+    let problem = Coverability::new(map, request.robot, request.start)?;
+    let frame = map.frame();
+    let k = coarse_block(&request.robot, frame.resolution());
+    let coarse = CoarseGrid::new(&problem.reachable, k);
+    let mut cells = match info.name {
+        "dtc" => dtc(&problem.reachable, &coarse, problem.start, DtcParams::new())?,
+        other => {
+            return Err(Error::Internal(format!(
+                "planner {other} is registered but not wired"
+            )));
+        }
+    };
+    let mut prefix = Vec::new();
+    if let Some(s) = request.start {
+        if frame.cell_center(problem.start) != s {
+            prefix.push(s);
+        }
+    }
+    let to_points = |cells: &[Cell]| {
+        let mut pts = prefix.clone();
+        pts.extend(cells_to_points(frame, cells));
+        pts
+    };
+    let raw_points = to_points(&cells);
+    let mut plan_time = t0.elapsed();
+    let raw = evaluate_problem(
+        frame,
+        problem.clone(),
+        &raw_points,
+        &MetricParams::default(),
+    );
+    let t1 = Instant::now();
+    let boundary = if request.boundary_pass {
+        let end = *cells.last().unwrap_or(&problem.start);
+        let route = boundary_pass(frame, &problem, &raw_points, end)?;
+        cells.extend_from_slice(&route.cells);
+        Some(route)
+    } else {
+        None
+    };
+    let points = to_points(&cells);
+    plan_time += t1.elapsed();
+    let evaluation = evaluate_problem(frame, problem, &points, &MetricParams::default());
+    Ok(PlanOutcome {
+        points,
+        cells,
+        evaluation,
+        coverage_without_boundary_pass: raw.metrics.coverage,
+        boundary,
+        coarse_block: k,
+        plan_ms: plan_time.as_secs_f64() * 1e3,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use oxcover_grid::random::rectangles;
+
+    #[test]
+    fn unknown_planner_lists_the_known_ones() {
+        let e = find_planner("nope").unwrap_err().to_string();
+        assert!(
+            e.contains("--planner is `nope`") && e.contains("dtc"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn block_is_one_tool_diameter() {
+        assert_eq!(coarse_block(&DiscRobot::cell_sized(0.05), 0.05), 1);
+        assert_eq!(coarse_block(&DiscRobot::new(0.15, 0.15).unwrap(), 0.05), 6);
+        assert_eq!(coarse_block(&DiscRobot::new(0.0, 0.01).unwrap(), 0.05), 1);
+    }
+
+    #[test]
+    fn wide_tool_plan_is_complete_and_collision_free() {
+        let base = rectangles(80, 60, 6, 12, 11);
+        let map = OccupancyGrid::new(base.cells().clone(), 0.05, Point::new(-1.0, 2.0));
+        let mut req = PlanRequest::new("dtc", 0.05);
+        req.robot = DiscRobot::new(0.15, 0.15).unwrap();
+        let out = plan(&map, &req).unwrap();
+        let m = &out.evaluation.metrics;
+        assert_eq!(m.collisions, 0);
+        assert_eq!(m.coverage, 1.0);
+        assert!(out.coverage_without_boundary_pass < 1.0);
+        assert_eq!(out.coarse_block, 6);
+        req.boundary_pass = false;
+        let raw = plan(&map, &req).unwrap();
+        assert_eq!(
+            raw.evaluation.metrics.coverage,
+            out.coverage_without_boundary_pass
+        );
+    }
+}

@@ -1,0 +1,113 @@
+//! The JSON report of `plan --report` and the human-readable metric rows.
+//!
+//! The report is the metrics object of `eval` plus the planner's name, its
+//! parameters, `plan_ms`, and the coverage before the boundary pass (so paper
+//! reproductions can show the raw planner).
+
+use serde::Serialize;
+
+use crate::metrics::Metrics;
+use crate::planner::PlanOutcome;
+
+/// Parameters a plan was made with.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PlanParameters {
+    /// The map file.
+    pub map: String,
+    /// Robot radius in metres.
+    pub robot_radius: f64,
+    /// Tool radius in metres.
+    pub tool_radius: f64,
+    /// Map resolution in metres per cell.
+    pub resolution: f64,
+    /// Start `[x, y]` in metres (the path's first waypoint).
+    pub start: [f64; 2],
+    /// Seed.
+    pub seed: u64,
+    /// Whether the boundary pass ran.
+    pub boundary_pass: bool,
+    /// Side of a coverage cell in metres (one tool diameter, at least one map cell).
+    pub coverage_cell_m: f64,
+}
+
+/// Boundary-pass statistics.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct BoundaryStats {
+    /// Coverable cells the planner left uncovered.
+    pub pending_cells: usize,
+    /// Anchor cells chosen to cover them.
+    pub anchors: usize,
+    /// Fine cells the pass appended.
+    pub appended_cells: usize,
+}
+
+/// The `plan --report` object.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PlanReport {
+    /// Planner name.
+    pub planner: String,
+    /// Parameters.
+    pub parameters: PlanParameters,
+    /// Planning time in milliseconds.
+    pub plan_ms: f64,
+    /// Coverage of the planner's own path.
+    pub coverage_without_boundary_pass: f64,
+    /// What the boundary pass did (null when off).
+    pub boundary: Option<BoundaryStats>,
+    /// The metrics of the final path (flattened into the object).
+    #[serde(flatten)]
+    pub metrics: Metrics,
+}
+
+impl PlanReport {
+    /// Builds the report of a plan.
+    #[must_use]
+    pub fn new(planner: &str, parameters: PlanParameters, outcome: &PlanOutcome) -> Self {
+        Self {
+            planner: planner.to_string(),
+            parameters,
+            plan_ms: outcome.plan_ms,
+            coverage_without_boundary_pass: outcome.coverage_without_boundary_pass,
+            boundary: outcome.boundary.as_ref().map(|b| BoundaryStats {
+                pending_cells: b.pending,
+                anchors: b.anchors,
+                appended_cells: b.cells.len(),
+            }),
+            metrics: outcome.evaluation.metrics.clone(),
+        }
+    }
+}
+
+/// `(key, value)` rows for tables and legends.
+#[must_use]
+pub fn metric_rows(m: &Metrics) -> Vec<(String, String)> {
+    let mut rows = vec![
+        ("coverage".to_string(), format!("{:.4}", m.coverage)),
+        ("collisions".to_string(), m.collisions.to_string()),
+        ("length_m".to_string(), format!("{:.2}", m.length_m)),
+        ("turns".to_string(), m.turns.to_string()),
+        ("rotation_rad".to_string(), format!("{:.1}", m.rotation_rad)),
+        (
+            "redundancy".to_string(),
+            m.redundancy
+                .map_or_else(|| "-".to_string(), |r| format!("{r:.3}")),
+        ),
+        ("steps".to_string(), format!("{:.0}", m.steps)),
+        ("est_time_s".to_string(), format!("{:.0}", m.est_time_s)),
+    ];
+    rows.push((
+        "covered".to_string(),
+        format!("{}/{}", m.covered_cells, m.coverable_cells),
+    ));
+    rows
+}
+
+/// A two-column text table.
+#[must_use]
+pub fn table(rows: &[(String, String)]) -> String {
+    let kw = rows.iter().map(|(k, _)| k.len()).max().unwrap_or(0);
+    let vw = rows.iter().map(|(_, v)| v.len()).max().unwrap_or(0);
+    rows.iter()
+        .map(|(k, v)| format!("  {k:<kw$}  {v:>vw$}\n"))
+        .collect()
+}

@@ -1,0 +1,295 @@
+//! Bad input, table-driven: every case must exit with status 2 and one line on
+//! stderr naming what was wrong, never a panic (contract, exit status).
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn bin() -> &'static str {
+    env!("CARGO_BIN_EXE_oxcover")
+}
+
+fn fixtures() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/maps")
+}
+
+fn scratch() -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("oxcover-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("create scratch dir");
+    dir
+}
+
+fn write(dir: &Path, name: &str, bytes: &[u8]) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, bytes).expect("write fixture");
+    p.display().to_string()
+}
+
+fn crc32(data: &[u8]) -> u32 {
+    let mut crc = !0u32;
+    for &b in data {
+        crc ^= u32::from(b);
+        for _ in 0..8 {
+            crc = if crc & 1 != 0 {
+                (crc >> 1) ^ 0xEDB8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
+}
+
+/// A syntactically valid PNG whose header claims `w × h` pixels (no image data).
+fn png_header_only(w: u32, h: u32) -> Vec<u8> {
+    let mut out = b"\x89PNG\r\n\x1a\n".to_vec();
+    let mut chunk = b"IHDR".to_vec();
+    chunk.extend(w.to_be_bytes());
+    chunk.extend(h.to_be_bytes());
+    chunk.extend([8, 0, 0, 0, 0]);
+    out.extend(13u32.to_be_bytes());
+    out.extend(&chunk);
+    out.extend(crc32(&chunk).to_be_bytes());
+    out
+}
+
+const GOOD_YAML: &str = "image: ok.pgm\nresolution: 0.05\norigin: [0.0, 0.0, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+
+#[test]
+fn bad_inputs_exit_2_with_one_line() {
+    let d = scratch();
+    let ok_pgm = write(
+        &d,
+        "ok.pgm",
+        b"P5\n4 3\n255\n\xfe\xfe\xfe\xfe\xfe\xfe\xfe\xfe\xfe\xfe\xfe\xfe",
+    );
+    let good_yaml = write(&d, "good.yaml", GOOD_YAML.as_bytes());
+    let real_png = std::fs::read(fixtures().join("pythonrobotics/test.png")).unwrap();
+    let truncated_png = write(&d, "truncated.png", &real_png[..real_png.len() / 2]);
+    let lying_pgm = write(&d, "lying.pgm", b"P5\n100 100\n255\n\x00\x00\x00\x00");
+    let huge_pgm = write(&d, "huge.pgm", b"P5\n100000 100000\n255\n\x00");
+    let huge_png = write(&d, "huge.png", &png_header_only(100_000, 100_000));
+    let no_res = write(
+        &d,
+        "nores.yaml",
+        GOOD_YAML.replace("resolution: 0.05\n", "").as_bytes(),
+    );
+    let yaw = write(
+        &d,
+        "yaw.yaml",
+        GOOD_YAML
+            .replace("0.0, 0.0, 0.0", "0.0, 0.0, 1.57")
+            .as_bytes(),
+    );
+    let no_image = write(
+        &d,
+        "noimage.yaml",
+        GOOD_YAML.replace("ok.pgm", "missing.pgm").as_bytes(),
+    );
+    let garbage_yaml = write(&d, "garbage.yaml", b"\x00\xff\x10 not yaml: [");
+    let empty_map = write(&d, "empty.map", b"");
+    let ragged_map = write(
+        &d,
+        "ragged.map",
+        b"type octile\nheight 2\nwidth 3\nmap\n...\n..\n",
+    );
+    let huge_map = write(
+        &d,
+        "huge.map",
+        b"type octile\nheight 100000\nwidth 100000\nmap\n",
+    );
+    let walls = write(
+        &d,
+        "walls.pgm",
+        b"P5\n3 3\n255\n\x00\x00\x00\x00\x00\x00\x00\x00\x00",
+    );
+    let jpeg = write(&d, "photo.png", b"\xff\xd8\xff\xe0\x00\x10JFIF\x00");
+    let no_header_csv = write(&d, "nohdr.csv", b"0.1,0.1\n");
+    let bad_csv = write(&d, "bad.csv", b"x,y\n0.075,abc\n");
+    let wall_csv = write(&d, "wall.csv", b"x,y\n-5,-5\n");
+    let ok_csv = write(&d, "ok.csv", b"x,y\n0.075,0.075\n");
+    let no_dir = d.join("no/such/dir/out.csv").display().to_string();
+    let missing = d.join("does-not-exist.yaml").display().to_string();
+    let _ = &ok_pgm;
+    let png_map = real_png_path();
+
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec!["plan", &truncated_png, "--planner", "dtc"],
+            "truncated",
+        ),
+        (
+            vec!["plan", &lying_pgm, "--planner", "dtc"],
+            "truncated: header says 100x100",
+        ),
+        (
+            vec!["plan", &huge_pgm, "--planner", "dtc"],
+            "exceeds the limit",
+        ),
+        (
+            vec!["plan", &huge_png, "--planner", "dtc"],
+            "exceeds the limit",
+        ),
+        (
+            vec!["plan", &huge_map, "--planner", "dtc"],
+            "exceeds the limit",
+        ),
+        (
+            vec!["plan", &no_res, "--planner", "dtc"],
+            "missing field `resolution`",
+        ),
+        (vec!["plan", &yaw, "--planner", "dtc"], "field `origin`"),
+        (vec!["plan", &no_image, "--planner", "dtc"], "missing.pgm"),
+        (
+            vec!["plan", &garbage_yaml, "--planner", "dtc"],
+            "garbage.yaml",
+        ),
+        (vec!["plan", &empty_map, "--planner", "dtc"], "empty file"),
+        (
+            vec!["plan", &ragged_map, "--planner", "dtc"],
+            "expected width 3",
+        ),
+        (vec!["plan", &walls, "--planner", "dtc"], "no free cell"),
+        (
+            vec!["plan", &jpeg, "--planner", "dtc"],
+            "not a PGM, PNG or BMP",
+        ),
+        (vec!["plan", &missing, "--planner", "dtc"], "cannot read"),
+        (
+            vec!["plan", &good_yaml, "--planner", "dtc", "--start", "-5,-5"],
+            "outside the map",
+        ),
+        (
+            vec!["plan", &good_yaml, "--planner", "dtc", "--start", "abc"],
+            "expected X,Y",
+        ),
+        (
+            vec!["plan", &good_yaml, "--planner", "dtc", "--start", "0.1,NaN"],
+            "finite",
+        ),
+        (
+            vec![
+                "plan",
+                &good_yaml,
+                "--planner",
+                "dtc",
+                "--robot-radius",
+                "-1",
+            ],
+            "--robot-radius is -1",
+        ),
+        (
+            vec![
+                "plan",
+                &good_yaml,
+                "--planner",
+                "dtc",
+                "--robot-radius",
+                "NaN",
+            ],
+            "--robot-radius is NaN",
+        ),
+        (
+            vec!["plan", &good_yaml, "--planner", "dtc", "--tool-radius", "0"],
+            "--tool-radius is 0",
+        ),
+        (
+            vec![
+                "plan",
+                &good_yaml,
+                "--planner",
+                "dtc",
+                "--tool-radius",
+                "inf",
+            ],
+            "--tool-radius is inf",
+        ),
+        (
+            vec![
+                "plan",
+                &good_yaml,
+                "--planner",
+                "dtc",
+                "--robot-radius",
+                "5",
+            ],
+            "no admissible cell",
+        ),
+        (
+            vec!["plan", &good_yaml, "--planner", "nope"],
+            "--planner is `nope`",
+        ),
+        (vec!["plan", &good_yaml], "--planner"),
+        (
+            vec!["plan", &good_yaml, "--planner", "dtc", "--out", &no_dir],
+            "cannot write",
+        ),
+        (
+            vec!["plan", &png_map, "--planner", "dtc", "--resolution", "-0.5"],
+            "--resolution is -0.5",
+        ),
+        (
+            vec![
+                "plan",
+                &good_yaml,
+                "--planner",
+                "dtc",
+                "--boundary-pass",
+                "maybe",
+            ],
+            "maybe",
+        ),
+        (
+            vec!["eval", &good_yaml, &no_header_csv],
+            "expected it to start with x,y",
+        ),
+        (vec!["eval", &good_yaml, &bad_csv], "line 2: y is `abc`"),
+        (vec!["eval", &good_yaml, &wall_csv], "outside the map"),
+        (
+            vec!["render", &good_yaml, &ok_csv, "--out", "picture.txt"],
+            "ending in .svg or .png",
+        ),
+        (vec!["info", &walls, "--resolution", "abc"], "abc"),
+        (vec!["frobnicate"], "frobnicate"),
+    ];
+    assert!(cases.len() >= 20);
+    for (args, want) in cases {
+        let out = Command::new(bin())
+            .args(&args)
+            .current_dir(&d)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: stderr {stderr:?}");
+        assert_eq!(
+            stderr.lines().count(),
+            1,
+            "{args:?}: not one line: {stderr:?}"
+        );
+        assert!(
+            stderr.contains(want),
+            "{args:?}: {stderr:?} should contain {want:?}"
+        );
+        assert!(!stderr.contains("panicked"), "{args:?}: {stderr:?}");
+    }
+}
+
+fn real_png_path() -> String {
+    fixtures()
+        .join("pythonrobotics/test.png")
+        .display()
+        .to_string()
+}
+
+#[test]
+fn help_and_version_exit_0() {
+    for args in [
+        vec!["--help"],
+        vec!["plan", "--help"],
+        vec!["eval", "--help"],
+        vec!["--version"],
+    ] {
+        let out = Command::new(bin()).args(&args).output().unwrap();
+        assert_eq!(out.status.code(), Some(0), "{args:?}");
+        assert!(!out.stdout.is_empty());
+    }
+}

@@ -1,0 +1,199 @@
+//! The command line end to end on bundled maps: plan writes what it says, eval
+//! agrees with plan, the report and metrics carry the contract's keys.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn bin() -> &'static str {
+    env!("CARGO_BIN_EXE_oxcover")
+}
+
+fn fixture(rel: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fixtures/maps")
+        .join(rel)
+        .display()
+        .to_string()
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("oxcover-cli-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("create scratch dir");
+    dir
+}
+
+fn run(args: &[&str]) -> (String, String) {
+    let out = Command::new(bin())
+        .args(args)
+        .output()
+        .expect("run oxcover");
+    let (o, e) = (
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    );
+    assert_eq!(out.status.code(), Some(0), "{args:?}: {e}");
+    (o, e)
+}
+
+fn json(text: &str) -> serde_json::Value {
+    serde_json::from_str(text).expect("valid JSON")
+}
+
+const METRIC_KEYS: [&str; 8] = [
+    "coverage",
+    "collisions",
+    "length_m",
+    "turns",
+    "rotation_rad",
+    "redundancy",
+    "steps",
+    "est_time_s",
+];
+
+fn plan_and_eval(map: &str, extra: &[&str], dir: &Path) -> (serde_json::Value, serde_json::Value) {
+    let csv = dir.join("p.csv").display().to_string();
+    let report = dir.join("r.json").display().to_string();
+    let mut args = vec![
+        "plan",
+        map,
+        "--planner",
+        "dtc",
+        "--out",
+        &csv,
+        "--report",
+        &report,
+    ];
+    args.extend_from_slice(extra);
+    run(&args);
+    let mut eargs = vec!["eval", map, &csv];
+    eargs.extend(
+        extra
+            .iter()
+            .filter(|a| **a != "--boundary-pass" && **a != "off"),
+    );
+    let (eval, _) = run(&eargs);
+    (
+        json(&std::fs::read_to_string(&report).expect("read report")),
+        json(&eval),
+    )
+}
+
+#[test]
+fn plan_then_eval_agree_on_a_ros_map_with_a_real_robot() {
+    let dir = scratch("ros");
+    let map = fixture("turtlebot_simulator/simple_rooms.yaml");
+    let extra = ["--robot-radius", "0.15", "--tool-radius", "0.15"];
+    let (report, eval) = plan_and_eval(&map, &extra, &dir);
+    for k in METRIC_KEYS {
+        assert!(eval.get(k).is_some(), "eval lacks {k}");
+        assert_eq!(report[k], eval[k], "{k}: plan report and eval differ");
+    }
+    assert_eq!(eval["collisions"], 0);
+    assert_eq!(eval["coverage"], 1.0);
+    assert_eq!(report["planner"], "dtc");
+    assert!(report["plan_ms"].as_f64().unwrap() > 0.0);
+    assert_eq!(report["parameters"]["robot_radius"], 0.15);
+    assert!(report["coverage_without_boundary_pass"].as_f64().unwrap() < 1.0);
+
+    let (raw, raw_eval) = plan_and_eval(
+        &map,
+        &[&extra[..], &["--boundary-pass", "off"]].concat(),
+        &dir,
+    );
+    assert_eq!(raw["boundary"], serde_json::Value::Null);
+    assert_eq!(raw["coverage"], raw_eval["coverage"]);
+    assert_eq!(raw["coverage"], report["coverage_without_boundary_pass"]);
+}
+
+#[test]
+fn default_radii_cover_every_cell_of_movingai_and_pgm_maps() {
+    let dir = scratch("unit");
+    for map in [
+        "movingai/room-32-32-4.map",
+        "navigation_tutorials/lse_arena.yaml",
+        "pythonrobotics/test.png",
+    ] {
+        let (_, eval) = plan_and_eval(&fixture(map), &[], &dir);
+        assert_eq!(eval["coverage"], 1.0, "{map}");
+        assert_eq!(eval["collisions"], 0, "{map}");
+    }
+}
+
+#[test]
+fn plans_are_deterministic() {
+    let dir = scratch("det");
+    let map = fixture("nav2/turtlebot3_world.yaml");
+    let mut files = Vec::new();
+    for i in 0..2 {
+        let csv = dir.join(format!("p{i}.csv")).display().to_string();
+        run(&[
+            "plan",
+            &map,
+            "--planner",
+            "dtc",
+            "--robot-radius",
+            "0.1",
+            "--tool-radius",
+            "0.12",
+            "--out",
+            &csv,
+        ]);
+        files.push(std::fs::read(&csv).unwrap());
+    }
+    assert_eq!(files[0], files[1]);
+}
+
+#[test]
+fn start_is_honoured_and_pictures_are_written() {
+    let dir = scratch("pics");
+    let map = fixture("navigation_tutorials/lse_arena.yaml");
+    let csv = dir.join("p.csv").display().to_string();
+    let svg = dir.join("p.svg").display().to_string();
+    let png = dir.join("p.png").display().to_string();
+    run(&[
+        "plan",
+        &map,
+        "--planner",
+        "dtc",
+        "--start",
+        "2.01,1.52",
+        "--out",
+        &csv,
+        "--svg",
+        &svg,
+        "--png",
+        &png,
+    ]);
+    let text = std::fs::read_to_string(&csv).unwrap();
+    assert!(text.starts_with("x,y\n2.01,1.52\n"), "{}", &text[..40]);
+    assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
+    assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
+    let out = dir.join("r.png").display().to_string();
+    run(&["render", &map, &csv, "--out", &out]);
+    assert!(std::fs::read(&out).unwrap().starts_with(b"\x89PNG"));
+    let out = dir.join("m.svg").display().to_string();
+    run(&["render", &map, "--out", &out]);
+    assert!(std::fs::read_to_string(&out).unwrap().contains("lse_arena"));
+}
+
+#[test]
+fn info_planners_and_demo() {
+    let (info, _) = run(&["info", &fixture("nobleo/basement.yaml")]);
+    assert!(
+        info.contains("600x600") && info.contains("unknown"),
+        "{info}"
+    );
+    let (planners, _) = run(&["planners"]);
+    assert!(planners.contains("dtc"));
+    let dir = scratch("demo");
+    oxcover::demo::run_into(&dir).unwrap();
+    for ext in ["csv", "svg", "png", "json"] {
+        assert!(
+            dir.join(format!("simple_rooms_dtc.{ext}")).exists(),
+            "{ext}"
+        );
+    }
+    let report = json(&std::fs::read_to_string(dir.join("simple_rooms_dtc.json")).unwrap());
+    assert_eq!(report["coverage"], 1.0);
+    assert_eq!(report["collisions"], 0);
+}

@@ -1,0 +1,172 @@
+//! `cargo xtask bench`: runs the criterion benchmarks of `oxcover-distance`,
+//! reads criterion's estimates, counts the cells each nearest-target search
+//! touches (deterministic, on the same maps, sources and targets as the bench),
+//! and writes both into `docs/benchmarks.md` with the command and the machine.
+
+#[path = "../../crates/oxcover-distance/benches/setup.rs"]
+mod setup;
+
+use std::path::Path;
+use std::process::Command;
+
+use anyhow::Context as _;
+use oxcover_distance::{BlockMap, CoarseToFine, Wavefront, cidt};
+use oxcover_grid::Grid;
+use serde_json::Value;
+use setup::{BLOCK, NEAR, central_source, far, maps, near_targets};
+
+fn estimate_ns(dir: &Path) -> anyhow::Result<(f64, f64)> {
+    let est: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("new/estimates.json"))?)?;
+    let mean = est["mean"]["point_estimate"].as_f64().context("mean")?;
+    let sd = est["std_dev"]["point_estimate"].as_f64().unwrap_or(0.0);
+    Ok((mean, sd))
+}
+
+fn machine() -> String {
+    let out = |cmd: &str, args: &[&str]| {
+        Command::new(cmd)
+            .args(args)
+            .output()
+            .ok()
+            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+            .unwrap_or_default()
+    };
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|s| s.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown CPU".into());
+    format!(
+        "{cpu}, {} cores, {}, {}",
+        std::thread::available_parallelism().map_or(1, |n| n.get()),
+        out("uname", &["-sm"]),
+        out("rustc", &["--version"])
+    )
+}
+
+pub(crate) fn run(no_run: bool) -> anyhow::Result<()> {
+    let root = crate::root();
+    if !no_run {
+        let status = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
+            .args(["bench", "-p", "oxcover-distance", "--bench", "wavefront"])
+            .current_dir(&root)
+            .status()?;
+        anyhow::ensure!(status.success(), "cargo bench failed");
+    }
+    let crit = root.join("target/criterion");
+    let mut md = format!(
+        "Measured by `cargo xtask bench` (which runs `cargo bench -p oxcover-distance --bench wavefront`) on {}.\n\n",
+        machine()
+    );
+    md += "### Full wavefront: Lee workspace vs plain `VecDeque` BFS (same run)\n\n";
+    md += "Throughput counts the cells labelled (the source's component). `lee` reuses a workspace built once per map (build time listed apart); `vecdeque` is `reference::bfs_distances`, which allocates its own distance grid as a plain BFS does.\n\n";
+    md += "| map | cells labelled | lee ms | lee M cells/s | vecdeque ms | vecdeque M cells/s | speed-up | lee build ms |\n|---|---:|---:|---:|---:|---:|---:|---:|\n";
+    let group = crit.join("full_wavefront");
+    let mut names: Vec<String> = std::fs::read_dir(group.join("lee"))
+        .with_context(|| {
+            format!(
+                "no criterion results under {}: run without --no-run",
+                group.display()
+            )
+        })?
+        .filter_map(|e| e.ok().map(|e| e.file_name().to_string_lossy().into_owned()))
+        .filter(|n| n != "report")
+        .collect();
+    names.sort();
+    let mut worst_ratio = f64::INFINITY;
+    for name in &names {
+        let bench: Value = serde_json::from_str(&std::fs::read_to_string(
+            group.join("lee").join(name).join("new/benchmark.json"),
+        )?)?;
+        let cells = bench["throughput"]["Elements"].as_f64().unwrap_or(0.0);
+        let (lee, _) = estimate_ns(&group.join("lee").join(name))?;
+        let (vd, _) = estimate_ns(&group.join("vecdeque").join(name))?;
+        let (build, _) = estimate_ns(&group.join("lee_build").join(name))?;
+        let ratio = vd / lee;
+        worst_ratio = worst_ratio.min(ratio);
+        md += &format!(
+            "| {name} | {cells:.0} | {:.2} | {:.0} | {:.2} | {:.0} | {ratio:.2}× | {:.2} |\n",
+            lee / 1e6,
+            cells / lee * 1e3,
+            vd / 1e6,
+            cells / vd * 1e3,
+            build / 1e6
+        );
+    }
+    md += &format!(
+        "\nLowest Lee / `VecDeque` speed-up over these maps: **{worst_ratio:.2}×** (target ≥ 2×).\n\n"
+    );
+
+    let mut worst_touch = f64::INFINITY;
+    for (group, far_targets) in [("nearest_target", false), ("far_target", true)] {
+        md += &if far_targets {
+            "### Far target (a quarter of the map's shorter side, at least 128): full wavefront vs CIDT vs CFCIDT\n\n".to_string()
+        } else {
+            format!(
+                "### Nearest target at Manhattan distance {NEAR}: full wavefront vs CIDT vs CFCIDT\n\n"
+            )
+        };
+        md += &format!(
+            "Time per query (criterion means) and cells touched (counted exactly; four target cells at that distance; CFCIDT block size {BLOCK}, its block states counted apart).\n\n"
+        );
+        md += "| map | distance | full ms | CIDT ms | CFCIDT ms | full cells | CIDT cells | CFCIDT fine cells | CFCIDT block states | full / CIDT | full / CFCIDT |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+        let ng = crit.join(group);
+        for (name, free) in maps() {
+            let (src, _) = central_source(&free);
+            let dist = if far_targets { far(&free) } else { NEAR };
+            let targets = near_targets(&free, src, dist);
+            let mut is_target = Grid::new(free.width(), free.height(), false);
+            for &t in &targets {
+                is_target[t] = true;
+            }
+            let mut wave = Wavefront::new(&free);
+            let full = wave.propagate(&[src]);
+            let want = targets.iter().filter_map(|&t| wave.distance(t)).min();
+            let near = cidt(&mut wave, &[src], |c| is_target[c]);
+            let mut blocks = BlockMap::new(&free, BLOCK);
+            for &t in &targets {
+                blocks.set_target(t, true);
+            }
+            let cf = CoarseToFine::new().nearest(&blocks, src);
+            anyhow::ensure!(
+                near.as_ref().map(|n| n.distance) == want
+                    && cf.as_ref().map(|f| f.distance) == want,
+                "{name}: CIDT/CFCIDT distance differs from the full wavefront"
+            );
+            let (ct, ft, bt) = (
+                near.map_or(0, |n| n.touched),
+                cf.as_ref().map_or(0, |f| f.fine_touched),
+                cf.as_ref().map_or(0, |f| f.coarse_touched),
+            );
+            let time =
+                |f: &str| estimate_ns(&ng.join(f).join(&name)).map_or(f64::NAN, |(m, _)| m / 1e6);
+            let (r1, r2) = (
+                full as f64 / ct.max(1) as f64,
+                full as f64 / (ft + bt).max(1) as f64,
+            );
+            if !far_targets {
+                worst_touch = worst_touch.min(r1).min(r2);
+            }
+            md += &format!(
+                "| {name} | {} | {:.2} | {:.3} | {:.3} | {full} | {ct} | {ft} | {bt} | {r1:.1}× | {r2:.1}× |\n",
+                want.map_or_else(|| "-".to_string(), |d| d.to_string()),
+                time("full"),
+                time("cidt"),
+                time("cfcidt")
+            );
+        }
+        md += "\n";
+    }
+    md += &format!(
+        "Fewest-cells ratio for near targets (full wavefront / search, CFCIDT counting fine cells + block states): **{worst_touch:.0}×** (target ≥ 5×).\n\n"
+    );
+    print!("{md}");
+    crate::replace_section(&root.join("docs/benchmarks.md"), "wavefront", &md)?;
+    println!("updated docs/benchmarks.md");
+    Ok(())
+}
