@@ -283,16 +283,57 @@ fn cmd_plan(a: &PlanArgs) -> Result<()> {
     for w in written {
         let _ = writeln!(out, "wrote {}", w.display());
     }
-    let free = map.counts().free;
-    let coverable = outcome.evaluation.metrics.coverable_cells;
-    if coverable < free {
-        let _ = writeln!(
-            std::io::stderr(),
-            "note: {} of {free} free cells are not coverable (not reachable from the start, or too close to obstacles for this robot and tool) and are not counted",
-            free - coverable
-        );
+    for note in coverage_notes(&map, &outcome.evaluation.problem, a.start.is_none()) {
+        let _ = writeln!(std::io::stderr(), "note: {note}");
     }
     Ok(())
+}
+
+/// Hints about what a plan leaves out: free cells it cannot cover, and a
+/// default start stranded in a small component (common in SLAM maps, whose
+/// first free cell is often a speck of noise).
+fn coverage_notes(
+    map: &OccupancyGrid,
+    problem: &oxcover_grid::Coverability,
+    default_start: bool,
+) -> Vec<String> {
+    let mut notes = Vec::new();
+    let free = map.counts().free;
+    let coverable = problem.coverable_count();
+    if coverable < free {
+        notes.push(format!(
+            "{} of {free} free cells are not coverable (not reachable from the start, or too close to obstacles for this robot and tool) and are not counted",
+            free - coverable
+        ));
+    }
+    let comps = components4(&problem.admissible);
+    let mine = comps.labels[problem.start];
+    if let Some(big) = comps.largest() {
+        let (ours, theirs) = (
+            comps.sizes[mine as usize - 1],
+            comps.sizes[big as usize - 1],
+        );
+        if big != mine && theirs > 2 * ours {
+            if let Some(cell) = problem
+                .admissible
+                .true_cells()
+                .find(|&c| comps.labels[c] == big)
+            {
+                let p = map.frame().cell_center(cell);
+                let how = if default_start {
+                    "the default start (first admissible cell)"
+                } else {
+                    "the start"
+                };
+                notes.push(format!(
+                    "{how} lies in a region of {ours} admissible cells; the largest has {theirs}: try --start {},{}",
+                    metres(p.x),
+                    metres(p.y)
+                ));
+            }
+        }
+    }
+    notes
 }
 
 /// Where to write a plan's outputs (each optional).
@@ -359,6 +400,13 @@ fn short_name(path: &str) -> String {
     Path::new(path)
         .file_name()
         .map_or_else(|| path.to_string(), |n| n.to_string_lossy().into_owned())
+}
+
+/// A coordinate in metres with at most six decimals, trailing zeros dropped.
+fn metres(v: f64) -> String {
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.to_string() }
 }
 
 fn cmd_eval(a: &EvalArgs) -> Result<()> {
