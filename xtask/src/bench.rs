@@ -49,7 +49,11 @@ fn machine() -> String {
     )
 }
 
-pub(crate) fn run(no_run: bool) -> anyhow::Result<()> {
+/// Runs the task.
+///
+/// # Errors
+/// When a step fails (see the module docs).
+pub fn run(no_run: bool) -> anyhow::Result<()> {
     let root = crate::root();
     if !no_run {
         let status = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))

@@ -1,18 +1,10 @@
-//! `cargo xtask <task>`: project tasks that are not part of any library.
-//!
-//! - `bench`: run the criterion benchmarks and write their figures (with the
-//!   reference ratios and cells-touched counts) into `docs/benchmarks.md`.
-//! - `maps`: plan and score every real map in `../shared/maps` and write the
-//!   table to `docs/maps.md`.
-//!
-//! One module per task; results go under `target/xtask/` and `docs/`.
+//! `cargo xtask <task>`: project tasks that are not part of any library; see
+//! the `xtask` library docs for what each does.
 
-mod bench;
-mod maps;
-
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use clap::{Parser, Subcommand};
+use xtask::sweep::{Generator, Shard, SweepSpec};
 
 #[derive(Parser)]
 #[command(name = "cargo xtask", about = "oxcover project tasks")]
@@ -35,40 +27,91 @@ enum Task {
         #[arg(long)]
         filter: Option<String>,
     },
+    /// Reproduce a paper's experiment: siamantas2010 or zhang2008.
+    Reproduce {
+        /// Experiment name.
+        name: String,
+    },
+    /// Run planners over seeded random maps, one JSON line per map.
+    Sweep {
+        /// Comma-separated planner names.
+        #[arg(long, default_value = "dtc,grid-cover")]
+        planners: String,
+        /// Map side in cells.
+        #[arg(long, default_value_t = 32)]
+        size: usize,
+        /// Share of blocked cells.
+        #[arg(long, default_value_t = 0.2)]
+        density: f64,
+        /// Number of maps.
+        #[arg(long, default_value_t = 100)]
+        count: usize,
+        /// Seed of map 0 (map i uses seed + i).
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Map generator.
+        #[arg(long, value_enum, default_value_t = Generator::Connected)]
+        generator: Generator,
+        /// Run only the maps of this shard, `I/N` (maps i with i % N == I).
+        #[arg(long)]
+        shard: Option<Shard>,
+        /// Record planning times (makes the output machine-dependent).
+        #[arg(long)]
+        timing: bool,
+        /// JSON-lines output (default: stdout).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Summary output (JSON).
+        #[arg(long)]
+        summary: Option<PathBuf>,
+    },
+    /// Merge sweep shards into the summary a single run gives.
+    Merge {
+        /// Shard files (JSON lines).
+        files: Vec<PathBuf>,
+        /// Summary output (default: stdout).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
 }
 
 fn main() -> anyhow::Result<()> {
-    let cli = Cli::parse();
-    match cli.task {
-        Task::Bench { no_run } => bench::run(no_run),
-        Task::Maps { filter } => maps::run(filter.as_deref()),
+    match Cli::parse().task {
+        Task::Bench { no_run } => xtask::bench::run(no_run),
+        Task::Maps { filter } => xtask::maps::run(filter.as_deref()),
+        Task::Reproduce { name } => xtask::reproduce::run(&name),
+        Task::Sweep {
+            planners,
+            size,
+            density,
+            count,
+            seed,
+            generator,
+            shard,
+            timing,
+            out,
+            summary,
+        } => {
+            let spec = SweepSpec {
+                planners: planners
+                    .split(',')
+                    .map(|s| s.trim().to_string())
+                    .filter(|s| !s.is_empty())
+                    .collect(),
+                size,
+                density,
+                count,
+                seed,
+                generator,
+                timing,
+            };
+            xtask::sweep::cli(
+                &spec,
+                shard.unwrap_or_default(),
+                out.as_deref(),
+                summary.as_deref(),
+            )
+        }
+        Task::Merge { files, out } => xtask::sweep::merge_cli(&files, out.as_deref()),
     }
-}
-
-/// The workspace root (this crate lives in `<root>/xtask`).
-pub(crate) fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .map_or_else(|| PathBuf::from("."), Path::to_path_buf)
-}
-
-/// `../shared/maps` next to the workspace, if present.
-pub(crate) fn shared_maps() -> Option<PathBuf> {
-    let p = root().join("../shared/maps");
-    p.is_dir().then_some(p)
-}
-
-/// Replaces the text between `<!-- BEGIN name -->` and `<!-- END name -->` in `file`.
-pub(crate) fn replace_section(file: &Path, name: &str, body: &str) -> anyhow::Result<()> {
-    let text = std::fs::read_to_string(file)?;
-    let (b, e) = (
-        format!("<!-- BEGIN {name} -->"),
-        format!("<!-- END {name} -->"),
-    );
-    let (Some(i), Some(j)) = (text.find(&b), text.find(&e)) else {
-        anyhow::bail!("{}: markers {b} / {e} not found", file.display());
-    };
-    let new = format!("{}{b}\n{body}{}", &text[..i], &text[j..]);
-    std::fs::write(file, new)?;
-    Ok(())
 }

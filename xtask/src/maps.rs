@@ -126,7 +126,11 @@ fn check(
     })
 }
 
-pub(crate) fn run(filter: Option<&str>) -> anyhow::Result<()> {
+/// Runs the task.
+///
+/// # Errors
+/// When a step fails (see the module docs).
+pub fn run(filter: Option<&str>) -> anyhow::Result<()> {
     let Some(root) = crate::shared_maps() else {
         anyhow::bail!("../shared/maps not found next to the workspace");
     };

@@ -161,11 +161,12 @@ impl CoarseGrid {
         )
     }
 
-    /// The fine path from the representative of `a` to that of the adjacent `b`,
-    /// inside their two blocks (both ends included), if they are connected.
+    /// The fine path from the representative of `a` to that of `b`, a 4- or
+    /// diagonal neighbour, inside the bounding rectangle of their blocks (both
+    /// ends included; shortest by BFS), if there is one.
     #[must_use]
     pub fn connect(&self, plannable: &Grid<bool>, a: Cell, b: Cell) -> Option<Vec<Cell>> {
-        if a.manhattan(b) != 1 {
+        if a == b || a.row.abs_diff(b.row) > 1 || a.col.abs_diff(b.col) > 1 {
             return None;
         }
         let mut scratch = Window::default();

@@ -171,10 +171,19 @@ fn disc_offsets(reach: f64) -> Vec<(isize, isize)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::metrics::{MetricParams, evaluate_problem};
-    use crate::path::cells_to_points;
+    use oxcover_grid::footprint::covered_cells;
     use oxcover_grid::io::parse_ascii;
     use oxcover_grid::{DiscRobot, OccupancyGrid};
+
+    fn centres(frame: &MapFrame, cells: &[Cell]) -> Vec<Point> {
+        cells.iter().map(|&c| frame.cell_center(c)).collect()
+    }
+
+    fn coverage(frame: &MapFrame, problem: &Coverability, pts: &[Point]) -> (usize, usize) {
+        let cov = covered_cells(frame, pts, problem.robot.tool_radius);
+        let n = problem.coverable.true_cells().filter(|&c| cov[c]).count();
+        (n, problem.coverable_count())
+    }
 
     #[test]
     fn covers_the_strip_a_coarse_lane_misses() {
@@ -194,19 +203,16 @@ mod tests {
         let robot = DiscRobot::new(0.0, 0.1).unwrap();
         let problem = Coverability::with_start_cell(&map, robot, Cell::new(2, 0)).unwrap();
         let lane: Vec<Cell> = (0..10).map(|c| Cell::new(2, c)).collect();
-        let pts = cells_to_points(map.frame(), &lane);
-        let before =
-            evaluate_problem(map.frame(), problem.clone(), &pts, &MetricParams::default()).metrics;
-        assert_eq!(before.covered_cells, 30);
+        let pts = centres(map.frame(), &lane);
+        assert_eq!(coverage(map.frame(), &problem, &pts), (30, 60));
         let r = boundary_pass(map.frame(), &problem, &pts, Cell::new(2, 9)).unwrap();
         assert_eq!(r.pending, 30);
         let mut all = lane.clone();
         all.extend_from_slice(&r.cells);
         assert!(all.windows(2).all(|w| w[0].manhattan(w[1]) == 1));
-        let pts = cells_to_points(map.frame(), &all);
-        let after = evaluate_problem(map.frame(), problem, &pts, &MetricParams::default()).metrics;
-        assert_eq!(after.coverage, 1.0);
-        assert_eq!(after.collisions, 0);
+        assert!(all.iter().all(|&c| problem.reachable[c]));
+        let pts = centres(map.frame(), &all);
+        assert_eq!(coverage(map.frame(), &problem, &pts), (60, 60));
     }
 
     #[test]
@@ -214,7 +220,7 @@ mod tests {
         let (m, s) = parse_ascii("S..").unwrap();
         let problem =
             Coverability::with_start_cell(&m, DiscRobot::cell_sized(1.0), s.unwrap()).unwrap();
-        let pts = cells_to_points(m.frame(), &[Cell::new(0, 0), Cell::new(0, 2)]);
+        let pts = centres(m.frame(), &[Cell::new(0, 0), Cell::new(0, 2)]);
         let r = boundary_pass(m.frame(), &problem, &pts, Cell::new(0, 2)).unwrap();
         assert_eq!((r.cells.len(), r.pending, r.anchors), (0, 0, 0));
         assert!(boundary_pass(m.frame(), &problem, &pts, Cell::new(5, 5)).is_err());

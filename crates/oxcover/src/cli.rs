@@ -18,7 +18,7 @@ use crate::demo;
 use crate::error::{Error, Result};
 use crate::metrics::{MetricParams, evaluate};
 use crate::path::{read_csv, write_csv};
-use crate::planner::{PLANNERS, PlanRequest, plan};
+use crate::planner::{PlanRequest, plan, planners};
 use crate::render::{Scene, render_to_file};
 use crate::report::{PlanParameters, PlanReport, metric_rows, table};
 
@@ -496,9 +496,10 @@ fn cmd_info(a: &InfoArgs) -> Result<()> {
 
 fn cmd_planners() {
     let mut out = std::io::stdout().lock();
-    let w = PLANNERS.iter().map(|p| p.name.len()).max().unwrap_or(4);
+    let list = planners();
+    let w = list.iter().map(|p| p.name.len()).max().unwrap_or(4);
     let _ = writeln!(out, "{:<w$}  complete  description", "name");
-    for p in PLANNERS {
+    for p in &list {
         let _ = writeln!(
             out,
             "{:<w$}  {:<8}  {}",

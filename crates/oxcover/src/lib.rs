@@ -1,14 +1,13 @@
 //! # oxcover
 //!
 //! Complete coverage path planning, composed end to end: this crate joins the
-//! grid model ([`oxcover_grid`]) and the distance transforms
-//! ([`oxcover_distance`]) into planners, scores paths with the contract's
-//! metrics, draws them, and provides the `oxcover` command line.
+//! grid model ([`oxcover_grid`]), the distance transforms
+//! ([`oxcover_distance`]) and the planners ([`oxcover_planners`]) into one
+//! pipeline, scores paths with the contract's metrics, draws them, and provides
+//! the `oxcover` command line.
 //!
-//! - [`planner`]: the registry and the pipeline (coverage problem → coverage
-//!   grid → planner → boundary pass → metre path).
-//! - [`dtc`]: distance-transform coverage (Zelinsky et al. 1993).
-//! - [`boundary_pass`]: covers what a plan missed along walls (seed 004).
+//! - [`planner`]: the pipeline (coverage problem → coverage grid → planner →
+//!   fine path → boundary pass → metre path) and the planner listing.
 //! - [`metrics`]: coverage, collisions, length, turns, rotation, redundancy,
 //!   steps, estimated time, exactly as the contract defines them.
 //! - [`path`]: cell paths to metre waypoints; the CSV path file.
@@ -31,10 +30,8 @@
 //! println!("{}", oxcover::path::to_csv(&outcome.points));
 //! ```
 
-pub mod boundary_pass;
 pub mod cli;
 pub mod demo;
-pub mod dtc;
 pub mod error;
 pub mod metrics;
 pub mod path;

@@ -1,68 +1,73 @@
-//! The planner registry and the plan pipeline: map + robot + start → metre path.
+//! The plan pipeline: map + robot + start → metre path, for any registered planner.
 //!
 //! Pipeline: build the contract's coverage problem ([`Coverability`]); group the
 //! plannable cells into coverage cells one tool diameter wide ([`CoarseGrid`],
 //! block = `max(1, floor(2T / resolution))` cells, so lanes one block apart
-//! leave no gap); run the planner; append the [boundary pass](crate::boundary_pass)
-//! unless turned off; convert the fine cell path to metre waypoints.
+//! leave no gap); run the planner ([`oxcover_planners::registry`]); make its
+//! plan a fine, collision-free cell path ([`expand`]) preceded by the way from
+//! the start to its coverage cell's representative; append the boundary pass
+//! unless turned off; convert to metre waypoints.
 
 use std::time::Instant;
 
+use oxcover_distance::{Wavefront, cidt};
 use oxcover_grid::{
     Cell, CoarseGrid, Coverability, DiscRobot, OccupancyGrid, Point, TOLERANCE_CELLS,
 };
+use oxcover_planners::{BoundaryRoute, Planner, PlannerInput, boundary_pass, expand, registry};
 use serde::Serialize;
 
-use crate::boundary_pass::{BoundaryRoute, boundary_pass};
-use crate::dtc::{DtcParams, dtc};
 use crate::error::{Error, Result};
 use crate::metrics::{Evaluation, MetricParams, evaluate_problem};
 use crate::path::cells_to_points;
 
-/// A registered planner.
+/// A registered planner, as `oxcover planners` lists it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 pub struct PlannerInfo {
     /// Name used on the command line.
     pub name: &'static str,
-    /// Whether it promises to cover every coverable cell (with the boundary pass).
+    /// Whether it promises to cover every coverage cell.
     pub complete: bool,
     /// One-line description with its source.
     pub summary: &'static str,
 }
 
 /// Every planner `plan --planner` accepts.
-pub const PLANNERS: &[PlannerInfo] = &[PlannerInfo {
-    name: "dtc",
-    complete: true,
-    summary: "distance-transform coverage, Zelinsky et al. 1993: climb the wavefront from the farthest goal",
-}];
+#[must_use]
+pub fn planners() -> Vec<PlannerInfo> {
+    registry()
+        .iter()
+        .map(|p| PlannerInfo {
+            name: p.name(),
+            complete: p.complete(),
+            summary: p.summary(),
+        })
+        .collect()
+}
 
 /// Looks a planner up by name.
 ///
 /// # Errors
 /// [`Error::Argument`] listing the known names.
-pub fn find_planner(name: &str) -> Result<&'static PlannerInfo> {
-    PLANNERS
-        .iter()
-        .find(|p| p.name == name)
-        .ok_or_else(|| Error::Argument {
-            name: "--planner",
-            value: name.to_string(),
-            expected: format!(
-                "one of: {}",
-                PLANNERS
-                    .iter()
-                    .map(|p| p.name)
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-        })
+pub fn find_planner(name: &str) -> Result<&'static dyn Planner> {
+    oxcover_planners::find(name).map_err(|_| Error::Argument {
+        name: "--planner",
+        value: name.to_string(),
+        expected: format!(
+            "one of: {}",
+            registry()
+                .iter()
+                .map(|p| p.name())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    })
 }
 
 /// What to plan.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PlanRequest {
-    /// Planner name (see [`PLANNERS`]).
+    /// Planner name (see [`planners`]).
     pub planner: String,
     /// Robot and tool.
     pub robot: DiscRobot,
@@ -121,23 +126,25 @@ pub fn coarse_block(robot: &DiscRobot, resolution: f64) -> usize {
 /// Plans a coverage path on `map`.
 ///
 /// # Errors
-/// Unknown planner, bad radii or start ([`oxcover_grid::Error`]), or an
-/// internal fault of a planner.
+/// Unknown planner, bad radii or start ([`oxcover_grid::Error`]), a planner's
+/// refusal ([`oxcover_planners::Error::TooLarge`]) or an internal fault.
 pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
-    let info = find_planner(&request.planner)?;
+    let planner = find_planner(&request.planner)?;
     let t0 = Instant::now();
     let problem = Coverability::new(map, request.robot, request.start)?;
     let frame = map.frame();
     let k = coarse_block(&request.robot, frame.resolution());
     let coarse = CoarseGrid::new(&problem.reachable, k);
-    let mut cells = match info.name {
-        "dtc" => dtc(&problem.reachable, &coarse, problem.start, DtcParams::new())?,
-        other => {
-            return Err(Error::Internal(format!(
-                "planner {other} is registered but not wired"
-            )));
-        }
+    let input = PlannerInput {
+        plannable: &problem.reachable,
+        coarse: &coarse,
+        start: coarse.coarse_of(problem.start),
+        seed: request.seed,
     };
+    let output = planner.plan(&input)?;
+    let planned = expand(&input, &output)?;
+    let mut cells = lead_in(&problem, planned.first().copied())?;
+    cells.extend(planned.into_iter().skip(1));
     let mut prefix = Vec::new();
     if let Some(s) = request.start {
         if frame.cell_center(problem.start) != s {
@@ -180,6 +187,20 @@ pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
     })
 }
 
+/// The fine path from the start cell to where the planner's path begins.
+fn lead_in(problem: &Coverability, to: Option<Cell>) -> Result<Vec<Cell>> {
+    let start = problem.start;
+    let Some(to) = to.filter(|&t| t != start) else {
+        return Ok(vec![start]);
+    };
+    let mut wave = Wavefront::new(&problem.reachable);
+    let near = cidt(&mut wave, &[start], |c| c == to).ok_or_else(|| {
+        Error::Internal(format!("plan starts at {to:?}, unreachable from the start"))
+    })?;
+    wave.retrace(near.first())
+        .ok_or_else(|| Error::Internal("lead-in retrace failed".into()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -187,9 +208,12 @@ mod tests {
 
     #[test]
     fn unknown_planner_lists_the_known_ones() {
-        let e = find_planner("nope").unwrap_err().to_string();
+        let e = find_planner("nope")
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
         assert!(
-            e.contains("--planner is `nope`") && e.contains("dtc"),
+            e.contains("--planner is `nope`") && e.contains("grid-cover"),
             "{e}"
         );
     }

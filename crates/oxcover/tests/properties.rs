@@ -1,9 +1,11 @@
-//! Planner properties on seeded random maps, the same checks for every planner:
-//! the path never leaves the admissible cells and covers every coverable cell.
-//! Heavier than unit tests: the README's test command runs them in release.
+//! Pipeline properties on seeded random maps, the same checks for every
+//! planner: the path never leaves the admissible cells (zero collisions), and
+//! planners that promise completeness cover every coverable cell, with random
+//! robot and tool radii. Heavier than unit tests: the README's test command
+//! runs them in release.
 
 use oxcover::metrics::{MetricParams, evaluate};
-use oxcover::planner::{PLANNERS, PlanRequest, plan};
+use oxcover::planner::{PlanRequest, plan, planners};
 use oxcover_grid::random::{blobs, random_density, rectangles};
 use oxcover_grid::{DiscRobot, OccupancyGrid, Point};
 use proptest::prelude::*;
@@ -17,35 +19,94 @@ fn random_map(kind: u8, w: usize, h: usize, seed: u64, res: f64) -> OccupancyGri
     OccupancyGrid::new(m.cells().clone(), res, Point::new(-3.0, 1.5))
 }
 
+/// Plans with `name`; `None` when the map has no room for the robot or the
+/// planner declines its size (a clear refusal, not a plan).
+fn check(
+    map: &OccupancyGrid,
+    robot: DiscRobot,
+    name: &str,
+    complete: bool,
+) -> Result<(), TestCaseError> {
+    let mut req = PlanRequest::new(name, map.resolution());
+    req.robot = robot;
+    req.boundary_pass = false;
+    let out = match plan(map, &req) {
+        Ok(o) => o,
+        Err(oxcover::Error::Map(
+            oxcover_grid::Error::NoAdmissibleCell { .. } | oxcover_grid::Error::NoFreeCell { .. },
+        )) => return Ok(()),
+        Err(oxcover::Error::Planner(oxcover_planners::Error::TooLarge { .. })) => return Ok(()),
+        Err(e) => return Err(TestCaseError::fail(format!("{name}: {e}"))),
+    };
+    let m = &out.evaluation.metrics;
+    prop_assert_eq!(m.collisions, 0, "{}", name);
+    let reach = &out.evaluation.problem.reachable;
+    prop_assert!(
+        out.cells.iter().all(|&c| reach[c]),
+        "{} left the plannable cells",
+        name
+    );
+    prop_assert!(
+        out.cells.windows(2).all(|s| s[0].manhattan(s[1]) <= 1),
+        "{} jumps",
+        name
+    );
+    if complete && out.coarse_block == 1 {
+        // On unit coverage cells a complete planner covers everything by itself.
+        prop_assert_eq!(
+            m.coverage,
+            1.0,
+            "{}: {}/{}",
+            name,
+            m.covered_cells,
+            m.coverable_cells
+        );
+    }
+    // With the boundary pass every planner covers everything.
+    req.boundary_pass = true;
+    let full = plan(map, &req).map_err(|e| TestCaseError::fail(e.to_string()))?;
+    let f = &full.evaluation.metrics;
+    prop_assert_eq!(f.collisions, 0, "{} + pass", name);
+    prop_assert_eq!(
+        f.coverage,
+        1.0,
+        "{} + pass: {}/{}",
+        name,
+        f.covered_cells,
+        f.coverable_cells
+    );
+    // Scoring the written path from scratch gives the same numbers.
+    let again = evaluate(map, robot, &full.points, &MetricParams::default())
+        .map_err(|e| TestCaseError::fail(e.to_string()))?;
+    prop_assert_eq!(&again.metrics, f);
+    Ok(())
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(40))]
+    #![proptest_config(ProptestConfig::with_cases(32))]
 
     #[test]
-    fn every_complete_planner_covers_everything_without_collisions(
+    fn linear_planners_on_larger_maps(
         kind in 0u8..3, w in 12usize..90, h in 12usize..90, seed in any::<u64>(),
         res in prop::sample::select(vec![0.03, 0.05, 0.1, 1.0]),
         robot_cells in 0.0f64..3.5, tool_cells in 0.3f64..4.5,
     ) {
         let map = random_map(kind, w, h, seed, res);
         let robot = DiscRobot::new(robot_cells * res, tool_cells * res).unwrap();
-        for info in PLANNERS.iter().filter(|p| p.complete) {
-            let mut req = PlanRequest::new(info.name, res);
-            req.robot = robot;
-            let out = match plan(&map, &req) {
-                Ok(o) => o,
-                // Maps with no room for this robot are a clear error, not a plan.
-                Err(oxcover::Error::Map(oxcover_grid::Error::NoAdmissibleCell { .. } | oxcover_grid::Error::NoFreeCell { .. })) => return Ok(()),
-                Err(e) => return Err(TestCaseError::fail(e.to_string())),
-            };
-            let m = &out.evaluation.metrics;
-            prop_assert_eq!(m.collisions, 0, "{}", info.name);
-            prop_assert_eq!(m.coverage, 1.0, "{}: {}/{}", info.name, m.covered_cells, m.coverable_cells);
-            let reach = &out.evaluation.problem.reachable;
-            prop_assert!(out.cells.iter().all(|&c| reach[c]));
-            prop_assert!(out.cells.windows(2).all(|s| s[0].manhattan(s[1]) <= 1));
-            // Scoring the written path from scratch gives the same numbers.
-            let again = evaluate(&map, robot, &out.points, &MetricParams::default()).unwrap();
-            prop_assert_eq!(&again.metrics, m);
+        for (name, complete) in [("dtc", true), ("grid-cover", true), ("rect-priority", false)] {
+            check(&map, robot, name, complete)?;
+        }
+    }
+
+    #[test]
+    fn every_registered_planner_on_small_maps(
+        kind in 0u8..3, w in 4usize..10, h in 4usize..10, seed in any::<u64>(),
+        tool_cells in prop::sample::select(vec![0.5, 0.5, 1.0]),
+    ) {
+        let map = random_map(kind, w, h, seed, 1.0);
+        let robot = DiscRobot::new(0.0, tool_cells).unwrap();
+        for p in planners() {
+            check(&map, robot, p.name, p.complete)?;
         }
     }
 }

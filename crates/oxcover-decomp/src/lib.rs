@@ -1,0 +1,28 @@
+//! # oxcover-decomp
+//!
+//! Decompositions of grid maps used by the coverage planners:
+//!
+//! - [`quadtree`]: quadtree decomposition (QTD) of a binary matrix into uniform
+//!   blocks, padded to a power of two, with O(log n) incremental updates that
+//!   report which blocks changed (seed 000's per-step decomposition).
+//! - [`rectangular`]: the rectangular decomposition of Zhang & Yan (seed 001):
+//!   real and virtual square nodes, the interleaving network of connectible
+//!   nodes, and rectangles grown next to blocked neighbours.
+//!
+//! ```
+//! use oxcover_decomp::QuadTree;
+//! use oxcover_grid::{Cell, Grid};
+//!
+//! // A 4x4 free matrix is one block; blocking a cell splits it into 7.
+//! let mut q = QuadTree::new(&Grid::new(4, 4, false));
+//! assert_eq!(q.blocks().len(), 1);
+//! let changes = q.set(Cell::new(0, 0), true);
+//! assert_eq!((changes.removed.len(), changes.added.len()), (1, 7));
+//! assert_eq!(q.free_blocks().iter().map(|b| b.area()).sum::<usize>(), 15);
+//! ```
+
+pub mod quadtree;
+pub mod rectangular;
+
+pub use quadtree::{Block, BlockChanges, QuadTree};
+pub use rectangular::{Rectangle, RectangularDecomposition, dir8_bit};

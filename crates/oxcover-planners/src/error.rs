@@ -1,0 +1,28 @@
+//! The planners' error type.
+
+/// Errors of the planners.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// The problem is larger than this planner accepts.
+    #[error("{planner} accepts at most {limit} coverage cells, this map has {cells}{hint}")]
+    TooLarge {
+        /// Planner name.
+        planner: &'static str,
+        /// Coverage cells in the problem.
+        cells: usize,
+        /// The planner's limit.
+        limit: usize,
+        /// What to do instead.
+        hint: &'static str,
+    },
+    /// No planner by that name.
+    #[error("no planner named `{0}`")]
+    UnknownPlanner(String),
+    /// A planner broke one of its own guarantees (a bug).
+    #[error("{0}")]
+    Internal(String),
+}
+
+/// Shorthand for results of this crate.
+pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -1,0 +1,46 @@
+//! # oxcover-planners
+//!
+//! Coverage planners on grid maps, behind one [`Planner`] trait and one
+//! [`registry`]:
+//!
+//! | name | module | source | complete |
+//! |---|---|---|---|
+//! | `dtc` | [`dtc`] | Zelinsky et al. 1993 | yes |
+//! | `full-dtc` | [`full_dtc`] | seed 000's baseline: DTC for every goal | yes |
+//! | `grid-cover` | [`grid_cover`] | Siamantas, Gatsis & Tzes 2010 (seed 000) | yes |
+//! | `rect-priority` | [`rect_priority`] | Zhang & Yan 2008 (seed 001) | no (paper: > 90 %) |
+//! | `optimal` | [`optimal`] | exact minimum moves (IDA\*), ≤ 128 cells | yes |
+//!
+//! Planners work on the coverage grid ([`oxcover_grid::CoarseGrid`]; one tool
+//! diameter per cell, the fine grid itself with the default radii) and return
+//! coverage or fine cell paths; [`expand`] makes every plan a 4-connected path
+//! of plannable fine cells. [`boundary_pass`] covers what a plan left uncovered
+//! along walls (seed 004's extra run along obstacle boundaries).
+//!
+//! ```
+//! use oxcover_grid::{io::parse_ascii, CoarseGrid};
+//! use oxcover_planners::{find, expand, PlannerInput};
+//!
+//! let (map, start) = parse_ascii("S..\n...").unwrap();
+//! let free = map.free_mask();
+//! let coarse = CoarseGrid::new(&free, 1);
+//! let input = PlannerInput::new(&free, &coarse, start.unwrap());
+//! let plan = find("grid-cover").unwrap().plan(&input).unwrap();
+//! let fine = expand(&input, &plan).unwrap();
+//! assert_eq!(fine.len(), 6); // a Hamiltonian path: 5 moves
+//! ```
+
+pub mod boundary_pass;
+pub mod dtc;
+pub mod error;
+pub mod full_dtc;
+pub mod grid_cover;
+pub mod optimal;
+pub mod planner;
+pub mod rect_priority;
+#[cfg(test)]
+mod testing;
+
+pub use boundary_pass::{BoundaryRoute, boundary_pass};
+pub use error::{Error, Result};
+pub use planner::{PlanOutput, Planner, PlannerInput, expand, find, registry, steps};

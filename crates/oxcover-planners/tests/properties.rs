@@ -1,0 +1,73 @@
+//! Every registered planner, checked the same way on seeded random maps: its
+//! fine path stays on plannable cells and moves 4-connected; complete planners
+//! visit every coverage cell; `optimal` is at most every other planner's moves
+//! and at least its lower bound (parity, dead ends, count).
+
+use oxcover_grid::random::{random_density, uniform_connected};
+use oxcover_grid::{CoarseGrid, Coverability, DiscRobot, Grid, OccupancyGrid};
+use oxcover_planners::optimal::{Optimal, lower_bound, optimal};
+use oxcover_planners::{PlannerInput, expand, registry};
+use proptest::prelude::*;
+
+fn problem(map: &OccupancyGrid) -> Option<Coverability> {
+    Coverability::new(map, DiscRobot::cell_sized(1.0), None).ok()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn plans_are_admissible_and_complete(w in 3usize..14, h in 3usize..14, density in 0.0f64..0.35, seed in any::<u64>(), block in 1usize..4) {
+        let map = random_density(w, h, density, seed);
+        let Some(p) = problem(&map) else { return Ok(()); };
+        let coarse = CoarseGrid::new(&p.reachable, block);
+        let input = PlannerInput::new(&p.reachable, &coarse, p.start);
+        for planner in registry() {
+            // The exact search is exponential in the grid's width; keep it to
+            // widths where it is quick (the optimality checks are below).
+            if planner.name() == "optimal" && coarse.width().min(coarse.height()) > 8 {
+                continue;
+            }
+            let out = match planner.plan(&input) {
+                Ok(o) => o,
+                Err(oxcover_planners::Error::TooLarge { .. }) => continue,
+                Err(e) => return Err(TestCaseError::fail(format!("{}: {e}", planner.name()))),
+            };
+            let fine = expand(&input, &out).unwrap();
+            prop_assert_eq!(fine.first().copied(), coarse.representative(input.start), "{}", planner.name());
+            prop_assert!(fine.iter().all(|&c| p.reachable[c]), "{} leaves the plannable cells", planner.name());
+            prop_assert!(fine.windows(2).all(|s| s[0].manhattan(s[1]) == 1), "{} is not 4-connected", planner.name());
+            if planner.complete() {
+                let mut seen = Grid::new(coarse.width(), coarse.height(), false);
+                match out.coverage() {
+                    Some(path) => path.iter().for_each(|&c| seen[c] = true),
+                    None => fine.iter().for_each(|&c| seen[coarse.coarse_of(c)] = true),
+                }
+                // Every coverage cell linked to the start in the coverage grid.
+                let mut wave = oxcover_distance::Wavefront::with_moves(&coarse.passable(), coarse.moves());
+                wave.propagate(&[input.start]);
+                for c in wave.touched_cells() {
+                    prop_assert!(seen[c], "{} missed coverage cell {:?}", planner.name(), c);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn optimal_is_a_lower_envelope(seed in 0u64..400, start_pick in any::<u32>()) {
+        let map = uniform_connected(7, 7, 11, seed).unwrap();
+        let free = map.free_mask();
+        let cells: Vec<_> = free.true_cells().collect();
+        let start = cells[start_pick as usize % cells.len()];
+        let coarse = CoarseGrid::new(&free, 1);
+        let input = PlannerInput::new(&free, &coarse, start);
+        let best = optimal(&coarse, start, &Optimal::new()).unwrap();
+        prop_assert!(best.proven);
+        prop_assert!(best.steps >= lower_bound(&coarse, start));
+        prop_assert!(best.steps >= cells.len() - 1);
+        for planner in registry() {
+            let fine = expand(&input, &planner.plan(&input).unwrap()).unwrap();
+            prop_assert!(best.steps < fine.len(), "{} beat the optimum: {} < {}", planner.name(), fine.len() - 1, best.steps);
+        }
+    }
+}

@@ -1,0 +1,66 @@
+//! oxcover's project tasks (`cargo xtask <task>`), as a library so that tests
+//! can check them (sweep determinism, shard merging).
+//!
+//! - [`bench`]: run the criterion benchmarks and write their figures, with the
+//!   reference ratios and cells-touched counts, into `docs/benchmarks.md`.
+//! - [`maps`]: plan and score every real map in `../shared/maps`; `docs/maps.md`.
+//! - [`reproduce`]: the paper reproductions (`siamantas2010`, `zhang2008`),
+//!   each writing `docs/reproduction/<name>.md` with a table, an SVG figure
+//!   and the command.
+//! - [`sweep`]: any planner set over seeded random maps, one JSON line per map,
+//!   deterministic shards for job arrays, and the merge of shards.
+//! - [`plot`]: the small SVG line charts of the reproduction pages.
+
+pub mod bench;
+pub mod maps;
+pub mod plot;
+pub mod reproduce;
+pub mod sweep;
+
+use std::path::{Path, PathBuf};
+
+/// The workspace root (this crate lives in `<root>/xtask`).
+#[must_use]
+pub fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .map_or_else(|| PathBuf::from("."), Path::to_path_buf)
+}
+
+/// `../shared/maps` next to the workspace, if present.
+#[must_use]
+pub fn shared_maps() -> Option<PathBuf> {
+    let p = root().join("../shared/maps");
+    p.is_dir().then_some(p)
+}
+
+/// Replaces the text between `<!-- BEGIN name -->` and `<!-- END name -->` in `file`.
+///
+/// # Errors
+/// When the file cannot be read or written, or lacks the markers.
+pub fn replace_section(file: &Path, name: &str, body: &str) -> anyhow::Result<()> {
+    let text = std::fs::read_to_string(file)?;
+    let (b, e) = (
+        format!("<!-- BEGIN {name} -->"),
+        format!("<!-- END {name} -->"),
+    );
+    let (Some(i), Some(j)) = (text.find(&b), text.find(&e)) else {
+        anyhow::bail!("{}: markers {b} / {e} not found", file.display());
+    };
+    let new = format!("{}{b}\n{body}{}", &text[..i], &text[j..]);
+    std::fs::write(file, new)?;
+    Ok(())
+}
+
+/// A progress bar on stderr (drawn only when stderr is a terminal).
+#[must_use]
+pub fn progress(len: u64, what: &str) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(len);
+    if let Ok(style) =
+        indicatif::ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} ({eta})")
+    {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    bar.set_message(what.to_string());
+    bar
+}
