@@ -23,6 +23,84 @@ fn estimate_ns(dir: &Path) -> anyhow::Result<(f64, f64)> {
     Ok((mean, sd))
 }
 
+fn grid_cover_section(root: &Path) -> anyhow::Result<()> {
+    let group = root.join("target/criterion/grid_cover");
+    let mut md = format!(
+        "Measured by `cargo xtask bench` (which runs `cargo bench -p oxcover-planners --bench grid_cover`) on {}.\n\n",
+        machine()
+    );
+    md += "Random grids: 20 % of cells blocked (seed 7), planned over the largest free region from its first cell. `reference` is the literal eq. (2)–(5) implementation (fresh quadtree and fresh BFS per candidate, double sum), run only where it finishes in reasonable time.\n\n";
+    md += "| map | cells | fast ms | µs per cell | reference ms | reference / fast |\n|---|---:|---:|---:|---:|---:|\n";
+    let mut names: Vec<String> = std::fs::read_dir(group.join("fast"))
+        .with_context(|| format!("no criterion results under {}", group.display()))?
+        .filter_map(|e| e.ok().map(|e| e.file_name().to_string_lossy().into_owned()))
+        .filter(|n| n != "report")
+        .collect();
+    // Random grids by size, then real maps by name.
+    names.sort_by_key(|n| {
+        (
+            n.strip_prefix("random")
+                .and_then(|s| s.parse::<usize>().ok())
+                .unwrap_or(usize::MAX),
+            n.clone(),
+        )
+    });
+    let mut curve: Vec<(f64, f64)> = Vec::new();
+    let mut at128 = f64::NAN;
+    for name in &names {
+        let bench: Value = serde_json::from_str(&std::fs::read_to_string(
+            group.join("fast").join(name).join("new/benchmark.json"),
+        )?)?;
+        let cells = bench["throughput"]["Elements"].as_f64().unwrap_or(0.0);
+        let (fast, _) = estimate_ns(&group.join("fast").join(name))?;
+        let reference = estimate_ns(&group.join("reference").join(name))
+            .ok()
+            .map(|(m, _)| m);
+        if name.starts_with("random") {
+            curve.push((cells, fast));
+            if name == "random128" {
+                at128 = fast / 1e6;
+            }
+        }
+        md += &format!(
+            "| {name} | {cells:.0} | {:.2} | {:.2} | {} | {} |\n",
+            fast / 1e6,
+            fast / 1e3 / cells.max(1.0),
+            reference.map_or_else(|| "—".into(), |r| format!("{:.1}", r / 1e6)),
+            reference.map_or_else(|| "—".into(), |r| format!("{:.0}×", r / fast)),
+        );
+    }
+    // Log-log slopes between successive random sizes: the empirical exponent.
+    let slopes: Vec<String> = curve
+        .windows(2)
+        .map(|w| format!("{:.2}", (w[1].1 / w[0].1).ln() / (w[1].0 / w[0].0).ln()))
+        .collect();
+    md += &format!(
+        "\n128×128 with 20 % obstacles: **{at128:.0} ms** (target ≤ 2000 ms). Empirical exponent of time vs cells between successive random sizes: {} (2 would be the paper's O(n²)).\n\n",
+        slopes.join(", ")
+    );
+    let chart = crate::plot::Chart {
+        title: "Grid_Cover: time vs cells (random grids, 20 % obstacles)".into(),
+        x_label: "cells (log2)".into(),
+        y_label: "time, ms (log10)".into(),
+        bands: vec![],
+        series: vec![crate::plot::Series {
+            name: "grid-cover".into(),
+            colour: "#1f4e9c",
+            points: curve
+                .iter()
+                .map(|&(c, t)| (c.log2(), (t / 1e6).log10()))
+                .collect(),
+            dashed: false,
+        }],
+    };
+    std::fs::write(root.join("docs/grid_cover_scaling.svg"), chart.svg())?;
+    md += "![Grid_Cover time vs cells, log-log](grid_cover_scaling.svg)\n\n";
+    print!("{md}");
+    crate::replace_section(&root.join("docs/benchmarks.md"), "grid_cover", &md)?;
+    Ok(())
+}
+
 fn machine() -> String {
     let out = |cmd: &str, args: &[&str]| {
         Command::new(cmd)
@@ -53,14 +131,27 @@ fn machine() -> String {
 ///
 /// # Errors
 /// When a step fails (see the module docs).
-pub fn run(no_run: bool) -> anyhow::Result<()> {
+pub fn run(no_run: bool, only: Option<&str>) -> anyhow::Result<()> {
     let root = crate::root();
-    if !no_run {
+    let want = |name: &str| only.is_none_or(|o| o == name);
+    for (name, krate) in [
+        ("grid_cover", "oxcover-planners"),
+        ("wavefront", "oxcover-distance"),
+    ] {
+        if no_run || !want(name) {
+            continue;
+        }
         let status = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
-            .args(["bench", "-p", "oxcover-distance", "--bench", "wavefront"])
+            .args(["bench", "-p", krate, "--bench", name])
             .current_dir(&root)
             .status()?;
-        anyhow::ensure!(status.success(), "cargo bench failed");
+        anyhow::ensure!(status.success(), "cargo bench --bench {name} failed");
+    }
+    if want("grid_cover") {
+        grid_cover_section(&root)?;
+    }
+    if !want("wavefront") {
+        return Ok(());
     }
     let crit = root.join("target/criterion");
     let mut md = format!(

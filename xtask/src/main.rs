@@ -20,6 +20,9 @@ enum Task {
         /// Reuse the last criterion results instead of running the benches.
         #[arg(long)]
         no_run: bool,
+        /// Only this bench: wavefront or grid_cover.
+        #[arg(long)]
+        only: Option<String>,
     },
     /// Plan and score every real map in ../shared/maps; write docs/maps.md.
     Maps {
@@ -77,7 +80,7 @@ enum Task {
 
 fn main() -> anyhow::Result<()> {
     match Cli::parse().task {
-        Task::Bench { no_run } => xtask::bench::run(no_run),
+        Task::Bench { no_run, only } => xtask::bench::run(no_run, only.as_deref()),
         Task::Maps { filter } => xtask::maps::run(filter.as_deref()),
         Task::Reproduce { name } => xtask::reproduce::run(&name),
         Task::Sweep {

@@ -3,12 +3,13 @@
 //! A planner receives the coverage problem as a [`PlannerInput`]: the fine
 //! plannable cells (admissible and reachable), the coverage grid over them
 //! (one tool diameter per coverage cell; with the default radii, the fine grid
-//! itself), the start coverage cell and a seed. It returns either a path over
+//! itself), the start coverage cell and a seed. It returns a path over
 //! coverage cells, each step a connected move of the coverage grid (four
-//! neighbours, or a diagonal where [`CoarseGrid::connect`] finds a path), or a
-//! fine cell path. [`expand`] turns the first kind into the second, so every
-//! planner ends as a 4-connected path of plannable fine cells: no straight
-//! lines through walls.
+//! neighbours, or a diagonal where [`CoarseGrid::connect`] finds a path), a
+//! fine cell path, or a metre path (for planners that leave the grid, e.g.
+//! smoothed paths; the caller checks such paths point by point). [`expand`]
+//! turns coverage paths into fine ones, so grid planners end as 4-connected
+//! paths of plannable fine cells: no straight lines through walls.
 
 use oxcover_grid::{Cell, CoarseGrid, Grid};
 
@@ -47,12 +48,14 @@ impl<'a> PlannerInput<'a> {
 }
 
 /// What a planner returns.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum PlanOutput {
     /// Coverage cells from the start; consecutive cells are connected neighbours.
     Coverage(Vec<Cell>),
     /// Fine cells from the start's representative; consecutive cells are 4-neighbours.
     Fine(Vec<Cell>),
+    /// Waypoints in metres (map frame), from the start's representative's centre.
+    Metres(Vec<oxcover_grid::Point>),
 }
 
 impl PlanOutput {
@@ -61,7 +64,7 @@ impl PlanOutput {
     pub fn coverage(&self) -> Option<&[Cell]> {
         match self {
             PlanOutput::Coverage(v) => Some(v),
-            PlanOutput::Fine(_) => None,
+            PlanOutput::Fine(_) | PlanOutput::Metres(_) => None,
         }
     }
 }
@@ -114,10 +117,16 @@ pub fn find(name: &str) -> Result<&'static dyn Planner> {
 /// [`CoarseGrid::connect`] gives; the result starts at the start's representative.
 ///
 /// # Errors
-/// [`Error::Internal`] if two consecutive coverage cells are not connected.
+/// [`Error::Internal`] if two consecutive coverage cells are not connected, or
+/// for a metre path (it has no cell path; use it as it is).
 pub fn expand(input: &PlannerInput<'_>, output: &PlanOutput) -> Result<Vec<Cell>> {
     let path = match output {
         PlanOutput::Fine(v) => return Ok(v.clone()),
+        PlanOutput::Metres(_) => {
+            return Err(Error::Internal(
+                "a metre path has no cell path to expand".into(),
+            ));
+        }
         PlanOutput::Coverage(v) => v,
     };
     let Some(&first) = path.first() else {

@@ -14,7 +14,9 @@ use oxcover_distance::{Wavefront, cidt};
 use oxcover_grid::{
     Cell, CoarseGrid, Coverability, DiscRobot, OccupancyGrid, Point, TOLERANCE_CELLS,
 };
-use oxcover_planners::{BoundaryRoute, Planner, PlannerInput, boundary_pass, expand, registry};
+use oxcover_planners::{
+    BoundaryRoute, PlanOutput, Planner, PlannerInput, boundary_pass, expand, registry,
+};
 use serde::Serialize;
 
 use crate::error::{Error, Result};
@@ -98,7 +100,8 @@ impl PlanRequest {
 pub struct PlanOutcome {
     /// Metre waypoints (the path file).
     pub points: Vec<Point>,
-    /// The fine cell path behind them.
+    /// The fine cell path behind them (for a metre plan: its lead-in and the
+    /// boundary pass only).
     pub cells: Vec<Cell>,
     /// Scores of the final path.
     pub evaluation: Evaluation,
@@ -129,7 +132,22 @@ pub fn coarse_block(robot: &DiscRobot, resolution: f64) -> usize {
 /// Unknown planner, bad radii or start ([`oxcover_grid::Error`]), a planner's
 /// refusal ([`oxcover_planners::Error::TooLarge`]) or an internal fault.
 pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
-    let planner = find_planner(&request.planner)?;
+    plan_with(map, find_planner(&request.planner)?, request)
+}
+
+/// Plans with a given planner (registered or not); `request.planner` is ignored.
+///
+/// Coverage and fine cell paths are expanded to collision-free fine paths;
+/// a metre path is used as given after the lead-in from the start, so its
+/// collisions are whatever the planner made (the metrics count them).
+///
+/// # Errors
+/// As [`plan`].
+pub fn plan_with(
+    map: &OccupancyGrid,
+    planner: &dyn Planner,
+    request: &PlanRequest,
+) -> Result<PlanOutcome> {
     let t0 = Instant::now();
     let problem = Coverability::new(map, request.robot, request.start)?;
     let frame = map.frame();
@@ -142,7 +160,16 @@ pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
         seed: request.seed,
     };
     let output = planner.plan(&input)?;
-    let planned = expand(&input, &output)?;
+    let (planned, tail) = match &output {
+        PlanOutput::Metres(points) => {
+            let first = points.first().and_then(|p| frame.cell_at(p));
+            (
+                first.into_iter().collect::<Vec<_>>(),
+                points.get(1..).unwrap_or_default().to_vec(),
+            )
+        }
+        _ => (expand(&input, &output)?, Vec::new()),
+    };
     let mut cells = lead_in(&problem, planned.first().copied())?;
     cells.extend(planned.into_iter().skip(1));
     let mut prefix = Vec::new();
@@ -151,12 +178,16 @@ pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
             prefix.push(s);
         }
     }
-    let to_points = |cells: &[Cell]| {
+    // A metre plan continues after the lead-in's cells; the boundary pass
+    // then starts from the cell of its last point.
+    let to_points = |cells: &[Cell], extra: &[Cell]| {
         let mut pts = prefix.clone();
         pts.extend(cells_to_points(frame, cells));
+        pts.extend(tail.iter().copied());
+        pts.extend(cells_to_points(frame, extra));
         pts
     };
-    let raw_points = to_points(&cells);
+    let raw_points = to_points(&cells, &[]);
     let mut plan_time = t0.elapsed();
     let raw = evaluate_problem(
         frame,
@@ -165,15 +196,23 @@ pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
         &MetricParams::default(),
     );
     let t1 = Instant::now();
+    let mut extra = Vec::new();
     let boundary = if request.boundary_pass {
-        let end = *cells.last().unwrap_or(&problem.start);
+        let last_cell = raw_points
+            .last()
+            .and_then(|p| frame.cell_at(p))
+            .filter(|&c| problem.reachable[c]);
+        let end = last_cell
+            .or_else(|| cells.last().copied())
+            .unwrap_or(problem.start);
         let route = boundary_pass(frame, &problem, &raw_points, end)?;
-        cells.extend_from_slice(&route.cells);
+        extra.clone_from(&route.cells);
         Some(route)
     } else {
         None
     };
-    let points = to_points(&cells);
+    let points = to_points(&cells, &extra);
+    cells.extend(extra);
     plan_time += t1.elapsed();
     let evaluation = evaluate_problem(frame, problem, &points, &MetricParams::default());
     Ok(PlanOutcome {
@@ -223,6 +262,40 @@ mod tests {
         assert_eq!(coarse_block(&DiscRobot::cell_sized(0.05), 0.05), 1);
         assert_eq!(coarse_block(&DiscRobot::new(0.15, 0.15).unwrap(), 0.05), 6);
         assert_eq!(coarse_block(&DiscRobot::new(0.0, 0.01).unwrap(), 0.05), 1);
+    }
+
+    /// A planner that returns a metre path: the start's centre, then a point
+    /// half a cell to its east.
+    struct Metric;
+
+    impl Planner for Metric {
+        fn name(&self) -> &'static str {
+            "metric"
+        }
+        fn complete(&self) -> bool {
+            false
+        }
+        fn summary(&self) -> &'static str {
+            "test"
+        }
+        fn plan(&self, input: &PlannerInput<'_>) -> oxcover_planners::Result<PlanOutput> {
+            let frame =
+                oxcover_grid::MapFrame::unit(input.plannable.width(), input.plannable.height());
+            let rep = input.coarse.representative(input.start).unwrap_or_default();
+            let p = frame.cell_center(rep);
+            Ok(PlanOutput::Metres(vec![p, Point::new(p.x + 0.5, p.y)]))
+        }
+    }
+
+    #[test]
+    fn metre_plans_pass_through_and_get_the_boundary_pass() {
+        let (map, _) = oxcover_grid::io::parse_ascii("....\n....").unwrap();
+        let out = plan_with(&map, &Metric, &PlanRequest::new("metric", 1.0)).unwrap();
+        assert_eq!(out.points[0], Point::new(0.5, 1.5));
+        assert_eq!(out.points[1], Point::new(1.0, 1.5));
+        let m = &out.evaluation.metrics;
+        assert_eq!((m.coverage, m.collisions), (1.0, 0));
+        assert!(out.coverage_without_boundary_pass < 1.0);
     }
 
     #[test]

@@ -271,7 +271,10 @@ fn discussion(results: &[Result]) -> String {
          - **Repetition.** Mean repetition here is {rep:.3}. Our templates start and end at the node, as the paper says, and \
          diagonal moves pass through neighbouring squares without counting them covered: both repeat area. The paper's own \
          conclusion notes \"it is hard to avoid recovered areas nearby the obstacle\". Its maps and its exact definition of \
-         the repetition ratio are not published, so the comparison is of orders of magnitude, not digits.\n\
+         the repetition ratio are not published, so the comparison is of orders of magnitude, not digits. Our ratio \
+         counts the tool's whole sweep, also where the disc reaches over walls: in the MovingAI rooms (8- to 64-cell \
+         rooms, a 4-cell-wide tool) much of the sweep lies over walls and doors, which inflates the ratio there for \
+         every planner; the ROS maps and random maps are the fairer comparison.\n\
          - **Against Grid_Cover and DTC.** Both visit every coverage cell (complete on the coverage grid); their repetition \
          comes from backtracking and jumps. The table puts the three side by side on identical maps and starts.\n\
          - **Reading choices** (documented in the module): nodes are coverage cells of one tool diameter; \"connectible\" is a \
