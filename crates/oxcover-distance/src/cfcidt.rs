@@ -123,6 +123,17 @@ impl BlockMap {
         }
     }
 
+    /// Row-major indices of the passable 4-neighbours of cell index `i`.
+    fn open_neighbours(&self, i: usize) -> impl Iterator<Item = usize> + '_ {
+        let (r, c) = (i / self.width, i % self.width);
+        Dir4::ALL.into_iter().filter_map(move |d| {
+            let (dr, dc) = d.offset();
+            let (r, c) = (r.checked_add_signed(dr)?, c.checked_add_signed(dc)?);
+            let j = r * self.width + c;
+            (r < self.height && c < self.width && self.passable[j]).then_some(j)
+        })
+    }
+
     /// Whether `cell` is a passable target.
     #[must_use]
     pub fn is_target(&self, cell: Cell) -> bool {
@@ -307,23 +318,9 @@ impl CoarseToFine {
                 d += 1;
                 let mut next = Vec::new();
                 for &i in &layer {
-                    let c = Cell::new(i / map.width, i % map.width);
-                    for dir in Dir4::ALL {
-                        let (dr, dc) = dir.offset();
-                        let (Some(r), Some(cc)) =
-                            (c.row.checked_add_signed(dr), c.col.checked_add_signed(dc))
-                        else {
-                            continue;
-                        };
-                        if r >= map.height || cc >= map.width {
-                            continue;
-                        }
-                        let j = r * map.width + cc;
-                        let nc = Cell::new(r, cc);
-                        if !map.passable[j]
-                            || self.stamp[j] == self.epoch
-                            || !self.corridor[map.block_index(nc)]
-                        {
+                    for j in map.open_neighbours(i) {
+                        let nc = Cell::new(j / map.width, j % map.width);
+                        if self.stamp[j] == self.epoch || !self.corridor[map.block_index(nc)] {
                             continue;
                         }
                         self.stamp[j] = self.epoch;
@@ -435,26 +432,12 @@ impl CoarseToFine {
                     found = Some((g, i));
                     break;
                 }
-                let c = Cell::new(i / map.width, i % map.width);
-                for dir in Dir4::ALL {
-                    let (dr, dc) = dir.offset();
-                    let (Some(r), Some(cc)) =
-                        (c.row.checked_add_signed(dr), c.col.checked_add_signed(dc))
-                    else {
-                        continue;
-                    };
-                    if r >= map.height || cc >= map.width {
-                        continue;
-                    }
-                    let j = r * map.width + cc;
-                    if !map.passable[j] {
-                        continue;
-                    }
+                for j in map.open_neighbours(i) {
                     let ng = g + 1;
                     if ng >= self.g_of(j) {
                         continue;
                     }
-                    let hj = h_of(self, Cell::new(r, cc));
+                    let hj = h_of(self, Cell::new(j / map.width, j % map.width));
                     let f = ng.saturating_add(hj);
                     if f >= bound {
                         continue;

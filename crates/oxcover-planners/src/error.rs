@@ -16,6 +16,22 @@ pub enum Error {
         /// What to do instead.
         hint: &'static str,
     },
+    /// The coverage grid is wider than this planner accepts on its shorter side.
+    #[error(
+        "{planner} needs a coverage grid at most {limit} cells on its shorter side, this one is {width}x{height}{hint}"
+    )]
+    TooWide {
+        /// Planner name.
+        planner: &'static str,
+        /// Coverage-grid width.
+        width: usize,
+        /// Coverage-grid height.
+        height: usize,
+        /// The planner's limit.
+        limit: usize,
+        /// What to do instead.
+        hint: &'static str,
+    },
     /// No planner by that name.
     #[error("no planner named `{0}`")]
     UnknownPlanner(String),

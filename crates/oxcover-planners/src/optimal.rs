@@ -298,7 +298,7 @@ struct Entry {
 /// Searches for the minimum walk from `start` visiting every coverage cell reachable from it.
 ///
 /// # Errors
-/// [`Error::TooLarge`] when both sides of the coverage grid exceed
+/// [`Error::TooWide`] when both sides of the coverage grid exceed
 /// [`Optimal::MAX_WIDTH`]; the heuristics' own errors.
 pub fn optimal(coarse: &CoarseGrid, start: Cell, params: &Optimal) -> Result<OptimalResult> {
     let free = reachable(coarse, start);
@@ -307,11 +307,12 @@ pub fn optimal(coarse: &CoarseGrid, start: Cell, params: &Optimal) -> Result<Opt
     let transposed = gw > gh;
     let (w, h) = if transposed { (gh, gw) } else { (gw, gh) };
     if w > Optimal::MAX_WIDTH {
-        return Err(Error::TooLarge {
+        return Err(Error::TooWide {
             planner: "optimal",
-            cells: n,
-            limit: Optimal::MAX_WIDTH * Optimal::MAX_WIDTH,
-            hint: " (its shorter side must be at most 16 coverage cells; use grid-cover or dtc)",
+            width: gw,
+            height: gh,
+            limit: Optimal::MAX_WIDTH,
+            hint: " (exact search; use grid-cover or dtc, or a larger tool radius)",
         });
     }
     // Upper bound and fallback from the heuristics: Grid_Cover and the best

@@ -30,7 +30,7 @@ proptest! {
             }
             let out = match planner.plan(&input) {
                 Ok(o) => o,
-                Err(oxcover_planners::Error::TooLarge { .. }) => continue,
+                Err(oxcover_planners::Error::TooLarge { .. } | oxcover_planners::Error::TooWide { .. }) => continue,
                 Err(e) => return Err(TestCaseError::fail(format!("{}: {e}", planner.name()))),
             };
             let fine = expand(&input, &out).unwrap();

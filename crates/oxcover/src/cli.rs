@@ -20,7 +20,7 @@ use crate::metrics::{MetricParams, evaluate};
 use crate::path::{read_csv, write_csv};
 use crate::planner::{PlanRequest, plan, planners};
 use crate::render::{Scene, render_to_file};
-use crate::report::{PlanParameters, PlanReport, metric_rows, table};
+use crate::report::{PlanParameters, PlanReport, metric_rows, plan_rows, table};
 
 #[derive(Debug, Parser)]
 #[command(
@@ -271,15 +271,7 @@ fn cmd_plan(a: &PlanArgs) -> Result<()> {
         outcome.points.len(),
         outcome.plan_ms
     );
-    let mut rows = metric_rows(&outcome.evaluation.metrics);
-    rows.insert(
-        1,
-        (
-            "coverage (no boundary pass)".into(),
-            format!("{:.4}", outcome.coverage_without_boundary_pass),
-        ),
-    );
-    let _ = write!(out, "{}", table(&rows));
+    let _ = write!(out, "{}", table(&plan_rows(&outcome)));
     for w in written {
         let _ = writeln!(out, "wrote {}", w.display());
     }

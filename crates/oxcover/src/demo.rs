@@ -12,7 +12,7 @@ use oxcover_grid::io::{ReadOptions, read_ros_yaml_from_bytes};
 use crate::cli::{Outputs, write_plan_outputs};
 use crate::error::{Error, Result};
 use crate::planner::{PlanRequest, plan};
-use crate::report::{metric_rows, table};
+use crate::report::{plan_rows, table};
 
 const YAML: &str = include_str!("../../../fixtures/maps/turtlebot_simulator/simple_rooms.yaml");
 const IMAGE: &[u8] = include_bytes!("../../../fixtures/maps/turtlebot_simulator/simple_rooms.png");
@@ -61,15 +61,7 @@ pub fn run_into(dir: &Path) -> Result<()> {
         map.resolution(),
         outcome.plan_ms
     );
-    let mut rows = metric_rows(&outcome.evaluation.metrics);
-    rows.insert(
-        1,
-        (
-            "coverage (no boundary pass)".into(),
-            format!("{:.4}", outcome.coverage_without_boundary_pass),
-        ),
-    );
-    let _ = write!(out, "{}", table(&rows));
+    let _ = write!(out, "{}", table(&plan_rows(&outcome)));
     let _ = writeln!(out);
     for w in written {
         let shown = std::fs::canonicalize(&w).unwrap_or(w);

@@ -102,6 +102,21 @@ pub fn metric_rows(m: &Metrics) -> Vec<(String, String)> {
     rows
 }
 
+/// The rows of a plan: its metrics with the coverage before the boundary pass
+/// second.
+#[must_use]
+pub fn plan_rows(outcome: &PlanOutcome) -> Vec<(String, String)> {
+    let mut rows = metric_rows(&outcome.evaluation.metrics);
+    rows.insert(
+        1,
+        (
+            "coverage (no boundary pass)".into(),
+            format!("{:.4}", outcome.coverage_without_boundary_pass),
+        ),
+    );
+    rows
+}
+
 /// A two-column text table.
 #[must_use]
 pub fn table(rows: &[(String, String)]) -> String {

@@ -111,6 +111,10 @@ fn bad_inputs_exit_2_with_one_line() {
     let missing = d.join("does-not-exist.yaml").display().to_string();
     let _ = &ok_pgm;
     let png_map = real_png_path();
+    let big_map = fixtures()
+        .join("turtlebot_simulator/hospital_section.yaml")
+        .display()
+        .to_string();
 
     let cases: Vec<(Vec<&str>, &str)> = vec![
         (
@@ -250,6 +254,14 @@ fn bad_inputs_exit_2_with_one_line() {
         ),
         (vec!["info", &walls, "--resolution", "abc"], "abc"),
         (vec!["frobnicate"], "frobnicate"),
+        (
+            vec!["plan", &big_map, "--planner", "optimal"],
+            "at most 16 cells on its shorter side",
+        ),
+        (
+            vec!["plan", &big_map, "--planner", "full-dtc"],
+            "full-dtc accepts at most 20000 coverage cells",
+        ),
     ];
     assert!(cases.len() >= 20);
     for (args, want) in cases {

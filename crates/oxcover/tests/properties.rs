@@ -35,7 +35,9 @@ fn check(
         Err(oxcover::Error::Map(
             oxcover_grid::Error::NoAdmissibleCell { .. } | oxcover_grid::Error::NoFreeCell { .. },
         )) => return Ok(()),
-        Err(oxcover::Error::Planner(oxcover_planners::Error::TooLarge { .. })) => return Ok(()),
+        Err(oxcover::Error::Planner(
+            oxcover_planners::Error::TooLarge { .. } | oxcover_planners::Error::TooWide { .. },
+        )) => return Ok(()),
         Err(e) => return Err(TestCaseError::fail(format!("{name}: {e}"))),
     };
     let m = &out.evaluation.metrics;

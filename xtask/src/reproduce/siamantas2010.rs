@@ -332,7 +332,7 @@ fn discussion(rows: &[Row]) -> String {
          how its MNP was found (a heuristic minimum would make its index read higher than the true one).\n\
          - **Fig. 2a reproduces, and Grid_Cover does better than the paper's figure suggests.** The paper shows \
          Grid_Cover about as long as the full-DTC minimum. Here Grid_Cover is at or below the best DTC goal on \
-         {le_min} of {} maps, {gap:.1} moves shorter on average, and always below the full-DTC maximum.\n\
+         {le_min} of {} maps, {gap:.1} moves shorter than it on average, and always below the full-DTC maximum.\n\
          - **Run time: the paper's ≈ 7× is of the same order.** Full DTC / Grid_Cover total time here: {:.1}× on 8×8, \
          {:.1}× on 16×16, {:.1}× on 32×32. Both are O(n²); the ratio grows with `n` because full DTC's `n` runs each \
          label the whole grid while Grid_Cover's wavefronts shrink with the unvisited space and are skipped whenever \
