@@ -1,7 +1,7 @@
 //! oxcover's project tasks (`cargo xtask <task>`), as a library so that tests
 //! can check them (sweep determinism, shard merging).
 //!
-//! - [`bench`]: run the criterion benchmarks and write their figures, with the
+//! - [`bench`](mod@bench): run the criterion benchmarks and write their figures, with the
 //!   reference ratios and cells-touched counts, into `docs/benchmarks.md`.
 //! - [`maps`]: plan and score every real map in `../shared/maps`; `docs/maps.md`.
 //! - [`reproduce`]: the paper reproductions (`siamantas2010`, `zhang2008`),

@@ -6,12 +6,12 @@
 //!   multi-source, optional per-cell move masks, retrace that keeps direction.
 //! - [`zelinsky`]: Zelinsky's distance transform and path transform
 //!   (obstacle-proximity weighted, Dijkstra).
-//! - [`brushfire`]: distance to the nearest obstacle (4- or 8-connected).
-//! - [`cidt`]: constrained inverse distance transform: nearest target, stopping
+//! - [`brushfire`](mod@brushfire): distance to the nearest obstacle (4- or 8-connected).
+//! - [`cidt`](mod@cidt): constrained inverse distance transform: nearest target, stopping
 //!   the wave as soon as nothing nearer can appear.
 //! - [`cfcidt`]: coarse-to-fine CIDT over an incrementally maintained block map,
 //!   exact (same distance as a full BFS) thanks to a block-level lower bound.
-//! - [`reference`]: a plain `VecDeque` BFS that tests and benchmarks compare against.
+//! - [`reference`](mod@reference): a plain `VecDeque` BFS that tests and benchmarks compare against.
 //!
 //! ```
 //! use oxcover_distance::{cidt, Wavefront};

@@ -14,7 +14,7 @@
 //! Planners work on the coverage grid ([`oxcover_grid::CoarseGrid`]; one tool
 //! diameter per cell, the fine grid itself with the default radii) and return
 //! coverage or fine cell paths; [`expand`] makes every plan a 4-connected path
-//! of plannable fine cells. [`boundary_pass`] covers what a plan left uncovered
+//! of plannable fine cells. [`boundary_pass()`] covers what a plan left uncovered
 //! along walls (seed 004's extra run along obstacle boundaries).
 //!
 //! ```
