@@ -73,7 +73,8 @@ pub fn boundary_pass(
     }
 
     let reach = problem.robot.tool_cells(frame.resolution()) + TOLERANCE_CELLS;
-    let disc = disc_offsets(reach);
+    // No cell lies farther than the map's width + height: clip absurd tool radii.
+    let disc = disc_offsets(reach.min((frame.width() + frame.height()) as f64));
     let mut planned = covered.clone();
     let mut anchor_of = Grid::new(frame.width(), frame.height(), 0u32);
     let mut targets: Vec<Vec<Cell>> = Vec::new();

@@ -196,11 +196,7 @@ impl DtcWorkspace {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::testing::{plan_ascii, plan_cells};
-
-    fn cells(list: &[(usize, usize)]) -> Vec<Cell> {
-        list.iter().copied().map(Cell::from).collect()
-    }
+    use crate::testing::{cells, plan_ascii, plan_cells};
 
     #[test]
     fn exact_path_on_an_open_room() {

@@ -320,14 +320,10 @@ fn retrace(d: &Grid<Option<u32>>, target: Cell) -> Vec<Cell> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::testing::plan_ascii;
+    use crate::testing::{cells, plan_ascii};
     use oxcover_grid::random::{random_density, uniform_connected};
     use oxcover_grid::{Coverability, DiscRobot, OccupancyGrid};
     use proptest::prelude::*;
-
-    fn cells(list: &[(usize, usize)]) -> Vec<Cell> {
-        list.iter().copied().map(Cell::from).collect()
-    }
 
     #[test]
     fn exact_path_with_a_tie() {

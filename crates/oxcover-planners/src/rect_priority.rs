@@ -219,11 +219,7 @@ fn local_coverage(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::testing::plan_cells;
-
-    fn cells(list: &[(usize, usize)]) -> Vec<Cell> {
-        list.iter().copied().map(Cell::from).collect()
-    }
+    use crate::testing::{cells, plan_cells};
 
     #[test]
     fn exact_path_on_a_small_room() {

@@ -29,3 +29,8 @@ pub(crate) fn plan_cells(
         fine,
     )
 }
+
+/// Cells from `(row, col)` pairs.
+pub(crate) fn cells(list: &[(usize, usize)]) -> Vec<Cell> {
+    list.iter().copied().map(Cell::from).collect()
+}

@@ -102,8 +102,25 @@ pub fn evaluate(
         });
     };
     let problem = Coverability::new(map, robot, Some(start))?;
+    // A path is sampled every resolution/4; refuse one whose samples could not
+    // be counted in reasonable time (e.g. a waypoint kilometres off the map).
+    let length: f64 = points.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
+    let samples = length / (map.resolution() / 4.0);
+    if samples > MAX_SAMPLES {
+        return Err(crate::Error::Argument {
+            name: "path",
+            value: format!("{length:.1} m long"),
+            expected: format!(
+                "a path of at most {:.0} m on this map ({MAX_SAMPLES:.0} samples at resolution/4); check for waypoints far outside the map",
+                MAX_SAMPLES * map.resolution() / 4.0
+            ),
+        });
+    }
     Ok(evaluate_problem(map.frame(), problem, points, params))
 }
+
+/// Most samples [`evaluate`] takes (about a minute of work); longer paths are refused.
+pub const MAX_SAMPLES: f64 = 5e8;
 
 /// Scores `points` against an existing coverage problem (its start should be
 /// the cell of the first waypoint).

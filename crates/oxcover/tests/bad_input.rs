@@ -107,6 +107,7 @@ fn bad_inputs_exit_2_with_one_line() {
     let bad_csv = write(&d, "bad.csv", b"x,y\n0.075,abc\n");
     let wall_csv = write(&d, "wall.csv", b"x,y\n-5,-5\n");
     let ok_csv = write(&d, "ok.csv", b"x,y\n0.075,0.075\n");
+    let far_csv = write(&d, "far.csv", b"x,y\n0.075,0.075\n1e12,0.075\n");
     let no_dir = d.join("no/such/dir/out.csv").display().to_string();
     let missing = d.join("does-not-exist.yaml").display().to_string();
     let _ = &ok_pgm;
@@ -248,6 +249,7 @@ fn bad_inputs_exit_2_with_one_line() {
         ),
         (vec!["eval", &good_yaml, &bad_csv], "line 2: y is `abc`"),
         (vec!["eval", &good_yaml, &wall_csv], "outside the map"),
+        (vec!["eval", &good_yaml, &far_csv], "far outside the map"),
         (
             vec!["render", &good_yaml, &ok_csv, "--out", "picture.txt"],
             "ending in .svg or .png",
