@@ -31,6 +31,7 @@
 //! ```
 
 pub mod boundary_pass;
+pub mod bsa;
 pub mod dtc;
 pub mod error;
 pub mod full_dtc;
@@ -38,6 +39,8 @@ pub mod grid_cover;
 pub mod optimal;
 pub mod planner;
 pub mod rect_priority;
+mod route;
+pub mod stc;
 #[cfg(test)]
 mod testing;
 

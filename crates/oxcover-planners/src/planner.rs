@@ -89,15 +89,32 @@ pub trait Planner: Send + Sync {
 #[must_use]
 pub fn registry() -> &'static [&'static dyn Planner] {
     use crate::{
-        dtc::Dtc, full_dtc::FullDtc, grid_cover::GridCover, optimal::Optimal,
+        bsa::Bsa,
+        dtc::Dtc,
+        full_dtc::FullDtc,
+        grid_cover::GridCover,
+        optimal::Optimal,
         rect_priority::RectPriority,
+        stc::{Stc, StcVariant},
     };
     static DTC: Dtc = Dtc::new();
     static FULL_DTC: FullDtc = FullDtc::new();
     static GRID_COVER: GridCover = GridCover::new();
     static RECT: RectPriority = RectPriority::new();
     static OPTIMAL: Optimal = Optimal::new();
-    static ALL: [&dyn Planner; 5] = [&DTC, &FULL_DTC, &GRID_COVER, &RECT, &OPTIMAL];
+    static STC: Stc = Stc::new(StcVariant::Plain);
+    static SPIRAL_STC: Stc = Stc::new(StcVariant::Full);
+    static BSA: Bsa = Bsa;
+    static ALL: [&dyn Planner; 8] = [
+        &DTC,
+        &FULL_DTC,
+        &GRID_COVER,
+        &RECT,
+        &OPTIMAL,
+        &STC,
+        &SPIRAL_STC,
+        &BSA,
+    ];
     &ALL
 }
 

@@ -65,7 +65,8 @@ proptest! {
         prop_assert!(best.proven);
         prop_assert!(best.steps >= lower_bound(&coarse, start));
         prop_assert!(best.steps >= cells.len() - 1);
-        for planner in registry() {
+        // Incomplete planners (plain STC) may stop short of the optimum.
+        for planner in registry().iter().filter(|p| p.complete()) {
             let fine = expand(&input, &planner.plan(&input).unwrap()).unwrap();
             prop_assert!(best.steps < fine.len(), "{} beat the optimum: {} < {}", planner.name(), fine.len() - 1, best.steps);
         }
