@@ -8,6 +8,12 @@
 //! - [`rectangular`]: the rectangular decomposition of Zhang & Yan (seed 001):
 //!   real and virtual square nodes, the interleaving network of connectible
 //!   nodes, and rectangles grown next to blocked neighbours.
+//! - [`slices`]: a grid cut by parallel lanes at any angle into free
+//!   intervals, and cellular decompositions built from them with their
+//!   adjacency graphs: [`boustrophedon`] (Choset & Pignon: cut at critical
+//!   events) and [`trapezoidal`] (also cut where a side bends).
+//! - [`border_expansion`]: seed 004's roads, the boundaries of successive
+//!   offsets of the obstacles, with safety levels and the road graph.
 //!
 //! ```
 //! use oxcover_decomp::QuadTree;
@@ -21,8 +27,16 @@
 //! assert_eq!(q.free_blocks().iter().map(|b| b.area()).sum::<usize>(), 15);
 //! ```
 
+pub mod border_expansion;
+pub mod boustrophedon;
 pub mod quadtree;
 pub mod rectangular;
+pub mod slices;
+pub mod trapezoidal;
 
 pub use quadtree::{Block, BlockChanges, QuadTree};
+pub use border_expansion::{BorderExpansion, Road, border_expansion};
+pub use boustrophedon::boustrophedon;
+pub use slices::{Interval, Lane, SliceDecomposition, Slices};
+pub use trapezoidal::trapezoidal;
 pub use rectangular::{Rectangle, RectangularDecomposition, dir8_bit};

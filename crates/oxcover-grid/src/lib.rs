@@ -15,6 +15,7 @@
 //!   robot, a tool and a start.
 //! - [`CoarseGrid`]: tool-sized coverage cells over a fine map.
 //! - [`footprint`]: which cells a tool covers along a polyline.
+//! - [`traverse`]: exact traversal of straight segments over a grid.
 //! - [`random`]: seeded random maps for experiments and property tests.
 //! - [`math`]: the metre-space point and vector types of the workspace.
 //!
@@ -46,6 +47,7 @@ pub mod io;
 pub mod math;
 pub mod occupancy;
 pub mod random;
+pub mod traverse;
 
 pub use admissible::{TOLERANCE_CELLS, admissible, clearance};
 pub use coarse::CoarseGrid;
