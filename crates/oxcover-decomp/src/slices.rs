@@ -47,8 +47,15 @@ impl Interval {
 }
 
 /// Distance kept between an interval's ends and the blocked cell beyond, so
-/// an end point lies strictly inside a passable cell.
-const END_MARGIN: f64 = 1e-6;
+/// an end point lies strictly inside a passable cell (also after conversion
+/// to metres and back).
+const END_MARGIN: f64 = 1e-4;
+
+/// Snaps tiny direction components (from `cos 90°` and the like) to zero, so
+/// axis-aligned lines stay exactly on their row or column.
+fn snap(v: f64) -> f64 {
+    if v.abs() < 1e-12 { 0.0 } else { v }
+}
 
 /// Parallel lines over a passable mask and their free intervals.
 #[derive(Clone, Debug, PartialEq)]
@@ -72,8 +79,9 @@ impl Slices {
         } else {
             1.0
         };
-        let u = (angle.cos(), -angle.sin());
-        let n = (angle.sin(), angle.cos());
+        let u = (snap(angle.cos()), snap(-angle.sin()));
+        let n = (snap(angle.sin()), snap(angle.cos()));
+        let axis_aligned = u.0 == 0.0 || u.1 == 0.0;
         let proj = |p: GridPoint, d: GridPoint| p.0 * d.0 + p.1 * d.1;
         let (mut nmin, mut nmax) = (f64::INFINITY, f64::NEG_INFINITY);
         for c in passable.true_cells() {
@@ -86,6 +94,10 @@ impl Slices {
         let mut offsets = Vec::new();
         if nmin.is_finite() {
             let mut o = nmin + spacing / 2.0;
+            // Axis-aligned lines through cell centres, never along cell borders.
+            if axis_aligned {
+                o = o.floor() + 0.5;
+            }
             // At least one line through any non-empty mask.
             loop {
                 offsets.push(o.min(nmax - END_MARGIN));
@@ -131,6 +143,10 @@ impl Slices {
             if let Some(lo) = open {
                 runs.push((lo, last_exit));
             }
+            let inside = |t: f64| {
+                oxcover_grid::traverse::cell_of(passable, slices.point(i, t))
+                    .is_some_and(|c| passable[c])
+            };
             let ivs = runs
                 .into_iter()
                 .filter(|&(lo, hi)| hi - lo > 2.0 * END_MARGIN)
@@ -138,6 +154,10 @@ impl Slices {
                     lo: lo + END_MARGIN,
                     hi: hi - END_MARGIN,
                 })
+                // Rounding at a nearly parallel border could put an end in the
+                // cell beyond: such intervals are dropped (the leftover pass of
+                // the planners covers them).
+                .filter(|iv| inside(iv.lo) && inside(iv.hi))
                 .collect();
             slices.intervals.push(ivs);
         }

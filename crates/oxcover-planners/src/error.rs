@@ -32,6 +32,16 @@ pub enum Error {
         /// What to do instead.
         hint: &'static str,
     },
+    /// A planner parameter is out of range.
+    #[error("{name} is `{value}`, expected {expected}")]
+    BadParameter {
+        /// Parameter name.
+        name: &'static str,
+        /// The value given.
+        value: String,
+        /// What is accepted.
+        expected: &'static str,
+    },
     /// No planner by that name.
     #[error("no planner named `{0}`")]
     UnknownPlanner(String),

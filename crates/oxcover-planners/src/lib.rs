@@ -9,12 +9,20 @@
 //! | `full-dtc` | [`full_dtc`] | seed 000's baseline: DTC for every goal | yes |
 //! | `grid-cover` | [`grid_cover`] | Siamantas, Gatsis & Tzes 2010 (seed 000) | yes |
 //! | `rect-priority` | [`rect_priority`] | Zhang & Yan 2008 (seed 001) | no (paper: > 90 %) |
-//! | `optimal` | [`optimal`] | exact minimum moves (IDA\*), ≤ 128 cells | yes |
+//! | `optimal` | [`optimal`] | exact minimum moves (frontier DP), coverage grid ≤ 16 wide | yes |
+//! | `stc` | [`stc`] | Gabriely & Rimon 2001, full mega-cells only | no |
+//! | `spiral-stc` | [`stc`] | Gabriely & Rimon 2002, with partly blocked mega-cells | yes |
+//! | `bsa` | [`bsa`] | Gonzalez et al. 2005 | yes |
+//! | `boustrophedon` | [`sweep`] | Choset & Pignon 1997 (seed 004) | yes |
+//! | `trapezoidal` | [`sweep`] | slab decomposition (seed 004, Fig. 8) | yes |
+//! | `border-expansion` | [`border_expansion`] | Pavlicek et al. 2002 (seed 004) | yes |
 //!
 //! Planners work on the coverage grid ([`oxcover_grid::CoarseGrid`]; one tool
 //! diameter per cell, the fine grid itself with the default radii) and return
 //! coverage or fine cell paths; [`expand`] makes every plan a 4-connected path
-//! of plannable fine cells. [`boundary_pass()`] covers what a plan left uncovered
+//! of plannable fine cells. The sweep and border-expansion planners return
+//! metre paths whose every segment is checked cell by cell against the
+//! plannable mask (exact traversal), so they too never cross a wall. [`boundary_pass()`] covers what a plan left uncovered
 //! along walls (seed 004's extra run along obstacle boundaries).
 //!
 //! ```
@@ -30,17 +38,20 @@
 //! assert_eq!(fine.len(), 6); // a Hamiltonian path: 5 moves
 //! ```
 
+pub mod border_expansion;
 pub mod boundary_pass;
 pub mod bsa;
 pub mod dtc;
 pub mod error;
 pub mod full_dtc;
 pub mod grid_cover;
+mod metre_path;
 pub mod optimal;
 pub mod planner;
 pub mod rect_priority;
 mod route;
 pub mod stc;
+pub mod sweep;
 #[cfg(test)]
 mod testing;
 

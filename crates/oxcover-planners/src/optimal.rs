@@ -325,6 +325,7 @@ pub fn optimal(coarse: &CoarseGrid, start: Cell, params: &Optimal) -> Result<Opt
             coarse,
             start,
             seed: 0,
+            frame: oxcover_grid::MapFrame::unit(passable.width(), passable.height()),
         };
         if let Ok(fd) = full_dtc(&input) {
             if steps(&fd.shortest) < steps(&best) {

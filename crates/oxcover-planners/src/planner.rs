@@ -11,7 +11,7 @@
 //! turns coverage paths into fine ones, so grid planners end as 4-connected
 //! paths of plannable fine cells: no straight lines through walls.
 
-use oxcover_grid::{Cell, CoarseGrid, Grid};
+use oxcover_grid::{Cell, CoarseGrid, Grid, MapFrame};
 
 use crate::error::{Error, Result};
 
@@ -26,6 +26,8 @@ pub struct PlannerInput<'a> {
     pub start: Cell,
     /// Seed for randomised planners.
     pub seed: u64,
+    /// Where the grid lies in metres (for planners returning metre paths).
+    pub frame: MapFrame,
 }
 
 impl<'a> PlannerInput<'a> {
@@ -37,6 +39,7 @@ impl<'a> PlannerInput<'a> {
             coarse,
             start: coarse.coarse_of(fine_start),
             seed: 0,
+            frame: MapFrame::unit(plannable.width(), plannable.height()),
         }
     }
 
@@ -89,6 +92,7 @@ pub trait Planner: Send + Sync {
 #[must_use]
 pub fn registry() -> &'static [&'static dyn Planner] {
     use crate::{
+        border_expansion::BorderExpansionPlanner,
         bsa::Bsa,
         dtc::Dtc,
         full_dtc::FullDtc,
@@ -96,6 +100,7 @@ pub fn registry() -> &'static [&'static dyn Planner] {
         optimal::Optimal,
         rect_priority::RectPriority,
         stc::{Stc, StcVariant},
+        sweep::{Decomposition, Sweep},
     };
     static DTC: Dtc = Dtc::new();
     static FULL_DTC: FullDtc = FullDtc::new();
@@ -105,7 +110,10 @@ pub fn registry() -> &'static [&'static dyn Planner] {
     static STC: Stc = Stc::new(StcVariant::Plain);
     static SPIRAL_STC: Stc = Stc::new(StcVariant::Full);
     static BSA: Bsa = Bsa;
-    static ALL: [&dyn Planner; 8] = [
+    static BOUSTROPHEDON: Sweep = Sweep::new(Decomposition::Boustrophedon);
+    static TRAPEZOIDAL: Sweep = Sweep::new(Decomposition::Trapezoidal);
+    static BORDER: BorderExpansionPlanner = BorderExpansionPlanner;
+    static ALL: [&dyn Planner; 11] = [
         &DTC,
         &FULL_DTC,
         &GRID_COVER,
@@ -114,6 +122,9 @@ pub fn registry() -> &'static [&'static dyn Planner] {
         &STC,
         &SPIRAL_STC,
         &BSA,
+        &BOUSTROPHEDON,
+        &TRAPEZOIDAL,
+        &BORDER,
     ];
     &ALL
 }

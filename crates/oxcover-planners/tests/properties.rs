@@ -6,7 +6,45 @@
 use oxcover_grid::random::{random_density, uniform_connected};
 use oxcover_grid::{CoarseGrid, Coverability, DiscRobot, Grid, OccupancyGrid};
 use oxcover_planners::optimal::{Optimal, lower_bound, optimal};
-use oxcover_planners::{PlannerInput, expand, registry};
+use oxcover_grid::traverse::{cell_center, segment_clear};
+use oxcover_grid::Point;
+use oxcover_planners::{PlanOutput, PlannerInput, expand, registry};
+
+/// A metre plan (unit frame): starts at the start's representative, every
+/// segment crosses plannable cells only, and (if complete) passes within half
+/// a coverage cell of every representative.
+fn check_metres(input: &PlannerInput<'_>, points: &[Point], complete: bool) -> Result<(), String> {
+    let h = input.plannable.height() as f64;
+    let pts: Vec<(f64, f64)> = points.iter().map(|p| (p.x, h - p.y)).collect();
+    let rep = input.coarse.representative(input.start).ok_or("no start representative")?;
+    if pts.first() != Some(&cell_center(rep)) {
+        return Err(format!("starts at {:?}, not {:?}", pts.first(), cell_center(rep)));
+    }
+    for w in pts.windows(2) {
+        if !segment_clear(input.plannable, w[0], w[1]) {
+            return Err(format!("segment {:?} crosses a wall", w));
+        }
+    }
+    if complete {
+        let r = input.coarse.block_size() as f64 / 2.0 + 1e-9;
+        for rep in input.coarse.representatives().as_slice().iter().flatten() {
+            let c = cell_center(*rep);
+            let near = pts.windows(2).any(|w| segment_distance(w[0], w[1], c) <= r)
+                || pts.iter().any(|&p| (p.0 - c.0).hypot(p.1 - c.1) <= r);
+            if !near {
+                return Err(format!("missed representative {rep:?}"));
+            }
+        }
+    }
+    Ok(())
+}
+
+fn segment_distance(a: (f64, f64), b: (f64, f64), m: (f64, f64)) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let l2 = dx * dx + dy * dy;
+    let t = if l2 > 0.0 { (((m.0 - a.0) * dx + (m.1 - a.1) * dy) / l2).clamp(0.0, 1.0) } else { 0.0 };
+    (a.0 + t * dx - m.0).hypot(a.1 + t * dy - m.1)
+}
 use proptest::prelude::*;
 
 fn problem(map: &OccupancyGrid) -> Option<Coverability> {
@@ -33,6 +71,11 @@ proptest! {
                 Err(oxcover_planners::Error::TooLarge { .. } | oxcover_planners::Error::TooWide { .. }) => continue,
                 Err(e) => return Err(TestCaseError::fail(format!("{}: {e}", planner.name()))),
             };
+            if let PlanOutput::Metres(points) = &out {
+                check_metres(&input, points, planner.complete())
+                    .map_err(|e| TestCaseError::fail(format!("{}: {e}", planner.name())))?;
+                continue;
+            }
             let fine = expand(&input, &out).unwrap();
             prop_assert_eq!(fine.first().copied(), coarse.representative(input.start), "{}", planner.name());
             prop_assert!(fine.iter().all(|&c| p.reachable[c]), "{} leaves the plannable cells", planner.name());
@@ -67,7 +110,13 @@ proptest! {
         prop_assert!(best.steps >= cells.len() - 1);
         // Incomplete planners (plain STC) may stop short of the optimum.
         for planner in registry().iter().filter(|p| p.complete()) {
-            let fine = expand(&input, &planner.plan(&input).unwrap()).unwrap();
+            let out = planner.plan(&input).unwrap();
+            if let PlanOutput::Metres(points) = &out {
+                // A metre path has no move count to compare with the optimum.
+                let _ = points;
+                continue;
+            }
+            let fine = expand(&input, &out).unwrap();
             prop_assert!(best.steps < fine.len(), "{} beat the optimum: {} < {}", planner.name(), fine.len() - 1, best.steps);
         }
     }

@@ -60,7 +60,10 @@ impl Error {
     /// Exit status for this error: 2 for bad input or usage, 1 for internal faults.
     #[must_use]
     pub fn exit_code(&self) -> u8 {
-        if matches!(self, Error::Internal(_)) {
+        if matches!(
+            self,
+            Error::Internal(_) | Error::Planner(oxcover_planners::Error::Internal(_))
+        ) {
             1
         } else {
             2

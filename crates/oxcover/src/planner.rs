@@ -158,6 +158,7 @@ pub fn plan_with(
         coarse: &coarse,
         start: coarse.coarse_of(problem.start),
         seed: request.seed,
+        frame: *frame,
     };
     let output = planner.plan(&input)?;
     let (planned, tail) = match &output {
@@ -206,7 +207,13 @@ pub fn plan_with(
             .or_else(|| cells.last().copied())
             .unwrap_or(problem.start);
         let route = boundary_pass(frame, &problem, &raw_points, end)?;
-        extra.clone_from(&route.cells);
+        // The pass starts from `end`'s centre; a metre plan may stop elsewhere
+        // in that cell, so go to the centre first (a move inside one cell).
+        let off_centre = raw_points.last() != Some(&frame.cell_center(end));
+        if off_centre && route.pending > 0 {
+            extra.push(end);
+        }
+        extra.extend_from_slice(&route.cells);
         Some(route)
     } else {
         None

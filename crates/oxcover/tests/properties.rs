@@ -95,7 +95,11 @@ proptest! {
     ) {
         let map = random_map(kind, w, h, seed, res);
         let robot = DiscRobot::new(robot_cells * res, tool_cells * res).unwrap();
-        for (name, complete) in [("dtc", true), ("grid-cover", true), ("rect-priority", false)] {
+        for (name, complete) in [
+            ("dtc", true), ("grid-cover", true), ("rect-priority", false),
+            ("stc", false), ("spiral-stc", true), ("bsa", true),
+            ("boustrophedon", true), ("trapezoidal", true), ("border-expansion", true),
+        ] {
             check(&map, robot, name, complete)?;
         }
     }

@@ -1,0 +1,242 @@
+//! Building collision-free polylines for the planners that leave the cell
+//! lattice (sweep lanes at any angle, border-expansion roads).
+//!
+//! Points are in grid coordinates ([`oxcover_grid::traverse`]). A straight
+//! piece is added only when exact traversal finds every cell it crosses
+//! plannable; otherwise the builder routes over the fine grid (a shortest
+//! 4-connected path by CIDT) and straightens that route by string pulling,
+//! each shortcut again checked by traversal. So no segment ever crosses a wall,
+//! which is the usual failure of sweep planners that join cells by straight lines.
+//!
+//! [`PathBuilder::cover_leftovers`] makes the result complete on the coverage
+//! grid: it visits, nearest first, every coverage cell whose representative
+//! lies farther than half a coverage cell from the path (lane ends near
+//! walls, inner strips where offsets vanish).
+
+use oxcover_distance::{Wavefront, cidt};
+use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear};
+use oxcover_grid::{Cell, CoarseGrid, Grid, MapFrame, Point};
+
+use crate::error::{Error, Result};
+
+/// A polyline under construction over a plannable mask.
+#[derive(Debug)]
+pub(crate) struct PathBuilder<'a> {
+    plannable: &'a Grid<bool>,
+    wave: Wavefront,
+    points: Vec<GridPoint>,
+}
+
+impl<'a> PathBuilder<'a> {
+    /// A path starting at the centre of `start` (a plannable cell).
+    pub(crate) fn new(plannable: &'a Grid<bool>, start: Cell) -> Self {
+        Self {
+            plannable,
+            wave: Wavefront::new(plannable),
+            points: vec![cell_center(start)],
+        }
+    }
+
+    /// The current end point.
+    pub(crate) fn last(&self) -> GridPoint {
+        self.points[self.points.len() - 1]
+    }
+
+    /// The points so far.
+    pub(crate) fn points(&self) -> &[GridPoint] {
+        &self.points
+    }
+
+    fn push(&mut self, p: GridPoint) {
+        if self.last() != p {
+            self.points.push(p);
+        }
+    }
+
+    /// Goes to `q` (inside a plannable cell): straight when clear, otherwise
+    /// along a straightened shortest route.
+    pub(crate) fn go_to(&mut self, q: GridPoint) -> Result<()> {
+        let p = self.last();
+        if segment_clear(self.plannable, p, q) {
+            self.push(q);
+            return Ok(());
+        }
+        let (Some(a), Some(b)) = (cell_of(self.plannable, p), cell_of(self.plannable, q)) else {
+            return Err(Error::Internal(format!(
+                "route end outside the grid: {p:?} -> {q:?}"
+            )));
+        };
+        let route = self.route(a, b)?;
+        self.straighten(&route, Some(q), f64::INFINITY);
+        Ok(())
+    }
+
+    /// A shortest 4-connected route `a ..= b` of plannable cells.
+    fn route(&mut self, a: Cell, b: Cell) -> Result<Vec<Cell>> {
+        let near = cidt(&mut self.wave, &[a], |c| c == b)
+            .ok_or_else(|| Error::Internal(format!("no route {a:?} -> {b:?}")))?;
+        self.wave
+            .retrace(near.first())
+            .ok_or_else(|| Error::Internal("route retrace failed".into()))
+    }
+
+    /// Follows the 4-connected cell walk `cells` (its first cell is where the
+    /// path is, or next to it), ending at `end` if given, with shortcuts that
+    /// stay within `tolerance` cells of the skipped cell centres.
+    pub(crate) fn follow(&mut self, cells: &[Cell], tolerance: f64) {
+        self.straighten(cells, None, tolerance);
+    }
+
+    /// Appends the route's cell centres (then `end`), skipping those a clear
+    /// straight shortcut makes unnecessary and that lie within `tolerance` of it.
+    fn straighten(&mut self, cells: &[Cell], end: Option<GridPoint>, tolerance: f64) {
+        let mut targets: Vec<GridPoint> = cells.iter().map(|&c| cell_center(c)).collect();
+        if let Some(e) = end {
+            targets.push(e);
+        }
+        let mut anchor = self.last();
+        let mut i = 0;
+        while i < targets.len() {
+            // Extend the shortcut from `anchor` as far as it stays clear and close.
+            let mut j = i;
+            while j + 1 < targets.len()
+                && segment_clear(self.plannable, anchor, targets[j + 1])
+                && (tolerance.is_infinite()
+                    || targets[i..=j]
+                        .iter()
+                        .all(|&m| deviation(anchor, targets[j + 1], m) <= tolerance))
+            {
+                j += 1;
+            }
+            self.push(targets[j]);
+            anchor = targets[j];
+            i = j + 1;
+        }
+    }
+
+    /// Visits every coverage cell whose representative is not within half a
+    /// coverage cell of the path, nearest first.
+    pub(crate) fn cover_leftovers(&mut self, coarse: &CoarseGrid) -> Result<()> {
+        let radius = coarse.block_size() as f64 / 2.0 + 1e-9;
+        let mut wanted = Grid::new(self.plannable.width(), self.plannable.height(), false);
+        for rep in coarse.representatives().as_slice().iter().flatten() {
+            wanted[*rep] = true;
+        }
+        let mut marked = 0;
+        loop {
+            mark_near(coarse, &self.points[marked..], radius, &mut wanted);
+            marked = self.points.len().saturating_sub(1);
+            let Some(here) = cell_of(self.plannable, self.last()) else {
+                return Err(Error::Internal("path left the grid".into()));
+            };
+            let Some(near) = cidt(&mut self.wave, &[here], |c| wanted[c]) else {
+                return Ok(());
+            };
+            let route = self
+                .wave
+                .retrace(near.first())
+                .ok_or_else(|| Error::Internal("leftover retrace failed".into()))?;
+            self.straighten(&route[1..], None, f64::INFINITY);
+        }
+    }
+
+    /// The path in metres.
+    pub(crate) fn into_metres(self, frame: &MapFrame) -> Vec<Point> {
+        self.points
+            .into_iter()
+            .map(|(x, y)| frame.position(y - 0.5, x - 0.5))
+            .collect()
+    }
+}
+
+/// Distance from `m` to the segment `a b`.
+fn deviation(a: GridPoint, b: GridPoint, m: GridPoint) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 {
+        (((m.0 - a.0) * dx + (m.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let (px, py) = (a.0 + t * dx - m.0, a.1 + t * dy - m.1);
+    (px * px + py * py).sqrt()
+}
+
+/// Clears `wanted` at representatives within `radius` of the polyline
+/// `points` (sampled every quarter cell).
+fn mark_near(coarse: &CoarseGrid, points: &[GridPoint], radius: f64, wanted: &mut Grid<bool>) {
+    let reps = coarse.representatives();
+    let k = coarse.block_size() as f64;
+    let mut visit = |p: GridPoint| {
+        let (bc, br) = ((p.0 / k).floor() as i64, (p.1 / k).floor() as i64);
+        for r in br - 1..=br + 1 {
+            for c in bc - 1..=bc + 1 {
+                if r < 0 || c < 0 {
+                    continue;
+                }
+                let Some(Some(rep)) = reps.get(Cell::new(r as usize, c as usize)) else {
+                    continue;
+                };
+                let (x, y) = cell_center(*rep);
+                if (x - p.0).hypot(y - p.1) <= radius {
+                    wanted[*rep] = false;
+                }
+            }
+        }
+    };
+    if let [only] = points {
+        visit(*only);
+    }
+    for w in points.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let len = (b.0 - a.0).hypot(b.1 - a.1);
+        let n = (len / 0.25).ceil().max(1.0) as usize;
+        for i in 0..=n {
+            let t = i as f64 / n as f64;
+            visit((a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn mask(rows: &[&str]) -> Grid<bool> {
+        let h = rows.len();
+        let w = rows[0].len();
+        Grid::from_fn(w, h, |c| rows[c.row].as_bytes()[c.col] == b'.')
+    }
+
+    #[test]
+    fn routes_around_walls_and_straightens() {
+        let m = mask(&["......", ".####.", "......"]);
+        let mut b = PathBuilder::new(&m, Cell::new(0, 0));
+        b.go_to((0.5, 2.5)).unwrap();
+        // Straight down the left column: clear.
+        assert_eq!(b.points(), [(0.5, 0.5), (0.5, 2.5)]);
+        b.go_to((5.5, 0.5)).unwrap();
+        let pts = b.points().to_vec();
+        assert_eq!(pts.last(), Some(&(5.5, 0.5)));
+        for w in pts.windows(2) {
+            assert!(segment_clear(&m, w[0], w[1]), "{w:?}");
+        }
+        // Straightened: along the bottom row and up the right column.
+        assert_eq!(pts.len(), 4);
+    }
+
+    #[test]
+    fn leftovers_are_visited() {
+        let m = mask(&["....", "....", "...."]);
+        let coarse = CoarseGrid::new(&m, 1);
+        let mut b = PathBuilder::new(&m, Cell::new(0, 0));
+        b.go_to((3.5, 0.5)).unwrap();
+        b.cover_leftovers(&coarse).unwrap();
+        let mut left = Grid::new(4, 3, true);
+        mark_near(&coarse, b.points(), 0.5 + 1e-9, &mut left);
+        assert_eq!(left.count_true(), 0);
+        for w in b.points().windows(2) {
+            assert!(segment_clear(&m, w[0], w[1]));
+        }
+    }
+}
