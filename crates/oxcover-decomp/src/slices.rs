@@ -84,11 +84,20 @@ impl Slices {
         let axis_aligned = u.0 == 0.0 || u.1 == 0.0;
         let proj = |p: GridPoint, d: GridPoint| p.0 * d.0 + p.1 * d.1;
         let (mut nmin, mut nmax) = (f64::INFINITY, f64::NEG_INFINITY);
-        for c in passable.true_cells() {
-            for (dx, dy) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)] {
-                let v = proj((c.col as f64 + dx, c.row as f64 + dy), n);
-                nmin = nmin.min(v);
-                nmax = nmax.max(v);
+        // Extremes along any direction are reached at a row's first or last
+        // set cell: two cells per row instead of all of them.
+        for r in 0..passable.height() {
+            let row = passable.row(r);
+            let (Some(first), Some(last)) = (row.iter().position(|&b| b), row.iter().rposition(|&b| b))
+            else {
+                continue;
+            };
+            for col in [first, last] {
+                for (dx, dy) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)] {
+                    let v = proj((col as f64 + dx, r as f64 + dy), n);
+                    nmin = nmin.min(v);
+                    nmax = nmax.max(v);
+                }
             }
         }
         let mut offsets = Vec::new();

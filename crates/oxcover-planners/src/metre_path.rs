@@ -178,7 +178,8 @@ fn mark_near(coarse: &CoarseGrid, points: &[GridPoint], radius: f64, wanted: &mu
                     continue;
                 };
                 let (x, y) = cell_center(*rep);
-                if (x - p.0).hypot(y - p.1) <= radius {
+                let (dx, dy) = (x - p.0, y - p.1);
+                if dx * dx + dy * dy <= radius * radius {
                     wanted[*rep] = false;
                 }
             }

@@ -224,7 +224,12 @@ fn sweep_cell(path: &mut PathBuilder<'_>, d: &SliceDecomposition, cell: usize) -
 }
 
 fn dist(a: GridPoint, b: GridPoint) -> f64 {
-    (a.0 - b.0).hypot(a.1 - b.1)
+    dist2(a, b).sqrt()
+}
+
+fn dist2(a: GridPoint, b: GridPoint) -> f64 {
+    let (dx, dy) = (a.0 - b.0, a.1 - b.1);
+    dx * dx + dy * dy
 }
 
 /// Cell order from the cell nearest `start`; with `refine`, over graph
@@ -262,7 +267,7 @@ fn order_cells(d: &SliceDecomposition, start: GridPoint, refine: bool) -> (Vec<u
         let mut order = vec![cur];
         for _ in 1..n {
             let next = (0..n).filter(|&i| left[i]).min_by(|&a, &b| {
-                dist(centroids[cur], centroids[a]).total_cmp(&dist(centroids[cur], centroids[b]))
+                dist2(centroids[cur], centroids[a]).total_cmp(&dist2(centroids[cur], centroids[b]))
             });
             let Some(next) = next else { break };
             cost += dist(centroids[cur], centroids[next]);

@@ -1,0 +1,73 @@
+//! Every planner of issue 4 on the largest floor plan of
+//! `../shared/maps/ipa-floorplans` (`lab_b.png`, 1237×672 px at 0.05 m/px),
+//! robot and tool radius 0.3 m (coverage cells of 12×12 px), planner call
+//! only (the coverage problem and the coverage grid are built once, outside
+//! the timing). `dtc`, the simplest planner of the workspace, runs in the same
+//! group as the reference. The map is LGPL and not bundled: without
+//! `../shared/maps` the bench says so and measures nothing.
+//!
+//! Run: `cargo bench -p oxcover-planners --bench floorplan`; `cargo xtask
+//! bench` runs it and writes the figures into `docs/benchmarks.md`.
+
+#![expect(
+    missing_docs,
+    reason = "criterion_group! generates an undocumented pub fn"
+)]
+
+use std::hint::black_box;
+use std::path::PathBuf;
+use std::time::Duration;
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use oxcover_grid::io::{ReadOptions, read_map};
+use oxcover_grid::{CoarseGrid, Coverability, DiscRobot};
+use oxcover_planners::{PlannerInput, find};
+
+/// Planners measured, the reference first.
+const PLANNERS: [&str; 7] = [
+    "dtc",
+    "stc",
+    "spiral-stc",
+    "bsa",
+    "boustrophedon",
+    "trapezoidal",
+    "border-expansion",
+];
+
+fn floorplan(c: &mut Criterion) {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/maps/ipa-floorplans/lab_b.png");
+    let opts = ReadOptions {
+        resolution: 0.05,
+        ..ReadOptions::default()
+    };
+    let Ok(map) = read_map(&path, &opts) else {
+        eprintln!("{} not found: floorplan bench skipped", path.display());
+        return;
+    };
+    let robot = DiscRobot::new(0.3, 0.3).expect("valid radii");
+    // Start in the largest admissible region (the default start may be a speck).
+    let adm = oxcover_grid::admissible(&map, robot.robot_radius);
+    let comps = oxcover_grid::components4(&adm);
+    let big = comps.largest().expect("admissible cells");
+    let start = adm
+        .true_cells()
+        .find(|&c| comps.labels[c] == big)
+        .expect("a start");
+    let problem = Coverability::with_start_cell(&map, robot, start).expect("problem");
+    let coarse = CoarseGrid::new(&problem.reachable, 12);
+    let mut input = PlannerInput::new(&problem.reachable, &coarse, problem.start);
+    input.frame = *map.frame();
+    let mut g = c.benchmark_group("floorplan");
+    g.sample_size(10)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(4));
+    for name in PLANNERS {
+        let planner = find(name).expect("registered");
+        g.bench_function(name, |b| b.iter(|| black_box(planner.plan(&input))));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, floorplan);
+criterion_main!(benches);
