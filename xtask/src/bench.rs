@@ -101,6 +101,38 @@ fn grid_cover_section(root: &Path) -> anyhow::Result<()> {
     Ok(())
 }
 
+fn floorplan_section(root: &Path) -> anyhow::Result<()> {
+    let group = root.join("target/criterion/floorplan");
+    let mut md = format!(
+        "Measured by `cargo xtask bench` (which runs `cargo bench -p oxcover-planners --bench floorplan`) on {}.\n\n| planner | mean ms | sd ms | / dtc | under 200 ms |\n|---|---:|---:|---:|---|\n",
+        machine()
+    );
+    let (reference, _) = estimate_ns(&group.join("dtc"))
+        .with_context(|| format!("no criterion results under {}", group.display()))?;
+    for name in [
+        "dtc",
+        "stc",
+        "spiral-stc",
+        "bsa",
+        "boustrophedon",
+        "trapezoidal",
+        "border-expansion",
+    ] {
+        let Ok((mean, sd)) = estimate_ns(&group.join(name)) else {
+            continue;
+        };
+        md += &format!(
+            "| {name} | {:.2} | {:.2} | {:.1} | {} |\n",
+            mean / 1e6,
+            sd / 1e6,
+            mean / reference,
+            if mean < 200e6 { "yes" } else { "**no**" }
+        );
+    }
+    crate::replace_section(&root.join("docs/benchmarks.md"), "floorplan", &md)?;
+    Ok(())
+}
+
 fn machine() -> String {
     let out = |cmd: &str, args: &[&str]| {
         Command::new(cmd)
@@ -135,6 +167,7 @@ pub fn run(no_run: bool, only: Option<&str>) -> anyhow::Result<()> {
     let root = crate::root();
     let want = |name: &str| only.is_none_or(|o| o == name);
     for (name, krate) in [
+        ("floorplan", "oxcover-planners"),
         ("grid_cover", "oxcover-planners"),
         ("wavefront", "oxcover-distance"),
     ] {
@@ -146,6 +179,9 @@ pub fn run(no_run: bool, only: Option<&str>) -> anyhow::Result<()> {
             .current_dir(&root)
             .status()?;
         anyhow::ensure!(status.success(), "cargo bench --bench {name} failed");
+    }
+    if want("floorplan") {
+        floorplan_section(&root)?;
     }
     if want("grid_cover") {
         grid_cover_section(&root)?;

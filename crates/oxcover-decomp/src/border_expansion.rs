@@ -148,11 +148,7 @@ pub fn border_expansion(passable: &Grid<bool>, spacing: f64) -> BorderExpansion 
             }
         }
         if let Some(pc) = &prev_comp {
-            let near = nearest_road(
-                &pc.map(|&l| l != 0),
-                &out.roads,
-                &prev_roads,
-            );
+            let near = nearest_road(&pc.map(|&l| l != 0), &out.roads, &prev_roads);
             for id in first_road..out.roads.len() {
                 if let Some(&c) = out.roads[id].cells.first() {
                     if let Some(p) = near[c] {
@@ -221,7 +217,9 @@ fn trace_loops(region: &Grid<bool>) -> Vec<(Vec<Cell>, i64)> {
                 let diag = ahead.and_then(|a| region.step(a, d));
                 let (nc, nd) = if inside(ahead) && inside(diag) {
                     // Boundary turns outwards: around the corner via `ahead`.
-                    let (Some(a), Some(g)) = (ahead, diag) else { break };
+                    let (Some(a), Some(g)) = (ahead, diag) else {
+                        break;
+                    };
                     push(&mut cells, a);
                     (g, m.opposite())
                 } else if let (true, Some(a)) = (inside(ahead), ahead) {

@@ -45,7 +45,11 @@ mod tests {
     fn open_room_is_one_cell() {
         let m = mask(&["......", "......", "......"]);
         for deg in [0.0f64, 30.0, 45.0, 90.0] {
-            assert_eq!(boustrophedon(&m, deg.to_radians(), 1.0).cells.len(), 1, "{deg}");
+            assert_eq!(
+                boustrophedon(&m, deg.to_radians(), 1.0).cells.len(),
+                1,
+                "{deg}"
+            );
         }
     }
 }

@@ -34,9 +34,9 @@ pub mod rectangular;
 pub mod slices;
 pub mod trapezoidal;
 
-pub use quadtree::{Block, BlockChanges, QuadTree};
 pub use border_expansion::{BorderExpansion, Road, border_expansion};
 pub use boustrophedon::boustrophedon;
+pub use quadtree::{Block, BlockChanges, QuadTree};
+pub use rectangular::{Rectangle, RectangularDecomposition, dir8_bit};
 pub use slices::{Interval, Lane, SliceDecomposition, Slices};
 pub use trapezoidal::trapezoidal;
-pub use rectangular::{Rectangle, RectangularDecomposition, dir8_bit};

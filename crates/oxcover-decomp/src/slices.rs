@@ -88,7 +88,8 @@ impl Slices {
         // set cell: two cells per row instead of all of them.
         for r in 0..passable.height() {
             let row = passable.row(r);
-            let (Some(first), Some(last)) = (row.iter().position(|&b| b), row.iter().rposition(|&b| b))
+            let (Some(first), Some(last)) =
+                (row.iter().position(|&b| b), row.iter().rposition(|&b| b))
             else {
                 continue;
             };
@@ -119,8 +120,16 @@ impl Slices {
         // Parameter range along a line covering the whole grid.
         let (w, h) = (passable.width() as f64, passable.height() as f64);
         let corners = [(0.0, 0.0), (w, 0.0), (0.0, h), (w, h)];
-        let tmin = corners.iter().map(|&p| proj(p, u)).fold(f64::INFINITY, f64::min) - 1.0;
-        let tmax = corners.iter().map(|&p| proj(p, u)).fold(f64::NEG_INFINITY, f64::max) + 1.0;
+        let tmin = corners
+            .iter()
+            .map(|&p| proj(p, u))
+            .fold(f64::INFINITY, f64::min)
+            - 1.0;
+        let tmax = corners
+            .iter()
+            .map(|&p| proj(p, u))
+            .fold(f64::NEG_INFINITY, f64::max)
+            + 1.0;
         let mut slices = Self {
             angle,
             spacing,

@@ -76,6 +76,11 @@ mod tests {
     fn a_slanted_wall_is_one_side() {
         // A 45° wall: every line's end moves by one cell, a straight side.
         let m = mask(&["........", ".......#", "......##", ".....###", "....####"]);
-        assert_eq!(trapezoidal(&m, std::f64::consts::FRAC_PI_2, 1.0).cells.len(), 1);
+        assert_eq!(
+            trapezoidal(&m, std::f64::consts::FRAC_PI_2, 1.0)
+                .cells
+                .len(),
+            1
+        );
     }
 }

@@ -16,6 +16,7 @@
 //! - [`CoarseGrid`]: tool-sized coverage cells over a fine map.
 //! - [`footprint`]: which cells a tool covers along a polyline.
 //! - [`traverse`]: exact traversal of straight segments over a grid.
+//! - [`rotate`](mod@rotate): maps rotated about their centre, for rotation studies.
 //! - [`random`]: seeded random maps for experiments and property tests.
 //! - [`math`]: the metre-space point and vector types of the workspace.
 //!
@@ -47,6 +48,7 @@ pub mod io;
 pub mod math;
 pub mod occupancy;
 pub mod random;
+pub mod rotate;
 pub mod traverse;
 
 pub use admissible::{TOLERANCE_CELLS, admissible, clearance};

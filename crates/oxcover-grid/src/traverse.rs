@@ -50,7 +50,13 @@ pub fn traverse(
     let mut cy = a.1.floor() as i64;
     let step_x: i64 = if dx > 0.0 { 1 } else { -1 };
     let step_y: i64 = if dy > 0.0 { 1 } else { -1 };
-    let inv = |d: f64| if d == 0.0 { f64::INFINITY } else { 1.0 / d.abs() };
+    let inv = |d: f64| {
+        if d == 0.0 {
+            f64::INFINITY
+        } else {
+            1.0 / d.abs()
+        }
+    };
     let (dtx, dty) = (inv(dx), inv(dy));
     let next_boundary = |p: f64, c: i64, d: f64| {
         if d > 0.0 {
@@ -125,13 +131,19 @@ mod tests {
 
     #[test]
     fn horizontal_and_diagonal_segments() {
-        assert_eq!(cells((0.5, 0.5), (3.5, 0.5)), [(0, 0), (0, 1), (0, 2), (0, 3)]);
+        assert_eq!(
+            cells((0.5, 0.5), (3.5, 0.5)),
+            [(0, 0), (0, 1), (0, 2), (0, 3)]
+        );
         // Through corners: both side cells, then the diagonal one.
         assert_eq!(
             cells((0.5, 0.5), (2.5, 2.5)),
             [(0, 0), (0, 1), (1, 0), (1, 1), (1, 2), (2, 1), (2, 2)]
         );
-        assert_eq!(cells((2.5, 0.2), (0.5, 1.8)), [(0, 2), (0, 1), (1, 1), (1, 0)]);
+        assert_eq!(
+            cells((2.5, 0.2), (0.5, 1.8)),
+            [(0, 2), (0, 1), (1, 1), (1, 0)]
+        );
     }
 
     #[test]

@@ -17,8 +17,8 @@
 //! a metre path; it does not depend on the map's rotation beyond pixel effects.
 
 use oxcover_decomp::{BorderExpansion, border_expansion};
-use oxcover_grid::traverse::{GridPoint, cell_center};
 use oxcover_grid::Cell;
+use oxcover_grid::traverse::{GridPoint, cell_center};
 
 use crate::error::{Error, Result};
 use crate::metre_path::PathBuilder;
@@ -180,7 +180,10 @@ mod tests {
             .unwrap();
         let coarse = CoarseGrid::new(&p.reachable, block);
         let input = PlannerInput::new(&p.reachable, &coarse, p.start);
-        (BorderExpansionPlanner.plan_detailed(&input).unwrap(), p.reachable)
+        (
+            BorderExpansionPlanner.plan_detailed(&input).unwrap(),
+            p.reachable,
+        )
     }
 
     #[test]
@@ -197,7 +200,10 @@ mod tests {
             assert!(segment_clear(&m, w[0], w[1]), "{w:?}");
         }
         // The outer road of a 10x6 room: around the border, back to the start.
-        assert_eq!(&pts[..5], &[(0.5, 0.5), (9.5, 0.5), (9.5, 5.5), (0.5, 5.5), (0.5, 0.5)]);
+        assert_eq!(
+            &pts[..5],
+            &[(0.5, 0.5), (9.5, 0.5), (9.5, 5.5), (0.5, 5.5), (0.5, 0.5)]
+        );
     }
 
     #[test]

@@ -89,7 +89,9 @@ fn bsa(input: &PlannerInput<'_>) -> Result<Vec<Cell>> {
         } else {
             let route = router
                 .nearest(cur, |c| backtrack[c] && !visited[c])
-                .ok_or_else(|| Error::Internal("BSA: unvisited cells but no backtracking point".into()))?;
+                .ok_or_else(|| {
+                    Error::Internal("BSA: unvisited cells but no backtracking point".into())
+                })?;
             let n = route.len();
             if n >= 2 {
                 heading = route[n - 2].dir_to(route[n - 1]).unwrap_or(heading);
@@ -114,7 +116,17 @@ mod tests {
         let p = plan_ascii(&Bsa, "S..\n...\n...");
         assert_eq!(
             p,
-            cells(&[(0, 0), (0, 1), (0, 2), (1, 2), (2, 2), (2, 1), (2, 0), (1, 0), (1, 1)])
+            cells(&[
+                (0, 0),
+                (0, 1),
+                (0, 2),
+                (1, 2),
+                (2, 2),
+                (2, 1),
+                (2, 0),
+                (1, 0),
+                (1, 1)
+            ])
         );
     }
 
@@ -125,7 +137,16 @@ mod tests {
         let p = plan_ascii(&Bsa, "S...\n.###");
         assert_eq!(
             p,
-            cells(&[(0, 0), (0, 1), (0, 2), (0, 3), (0, 2), (0, 1), (0, 0), (1, 0)])
+            cells(&[
+                (0, 0),
+                (0, 1),
+                (0, 2),
+                (0, 3),
+                (0, 2),
+                (0, 1),
+                (0, 0),
+                (1, 0)
+            ])
         );
     }
 

@@ -43,6 +43,7 @@ impl<'a> PathBuilder<'a> {
     }
 
     /// The points so far.
+    #[cfg(test)]
     pub(crate) fn points(&self) -> &[GridPoint] {
         &self.points
     }

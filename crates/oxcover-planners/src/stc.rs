@@ -118,9 +118,8 @@ pub fn stc(coarse: &CoarseGrid, start: Cell, variant: StcVariant) -> Result<Vec<
         Cell::new(2 * m.row + dr, 2 * m.col + dc)
     };
     let has = |c: Cell| present.is_set(c);
-    let linked = |a: Cell, b: Cell| {
-        has(a) && has(b) && a.dir_to(b).is_some_and(|d| coarse.can_move(a, d))
-    };
+    let linked =
+        |a: Cell, b: Cell| has(a) && has(b) && a.dir_to(b).is_some_and(|d| coarse.can_move(a, d));
     let kept = Grid::from_fn(mw, mh, |m| match variant {
         StcVariant::Full => (0..4).any(|q| has(sub(m, q))),
         StcVariant::Plain => (0..4).all(|q| linked(sub(m, q), sub(m, (q + 1) % 4))),
@@ -259,10 +258,19 @@ mod tests {
     fn exact_path_on_a_two_by_four_room() {
         // Two mega-cells side by side; from TL the cycle runs counter-clockwise.
         let p = plan_ascii(&FULL, "S...\n....");
-        let want: Vec<Cell> = [(0, 0), (1, 0), (1, 1), (1, 2), (1, 3), (0, 3), (0, 2), (0, 1)]
-            .into_iter()
-            .map(Cell::from)
-            .collect();
+        let want: Vec<Cell> = [
+            (0, 0),
+            (1, 0),
+            (1, 1),
+            (1, 2),
+            (1, 3),
+            (0, 3),
+            (0, 2),
+            (0, 1),
+        ]
+        .into_iter()
+        .map(Cell::from)
+        .collect();
         assert_eq!(p, want);
     }
 
@@ -274,10 +282,19 @@ mod tests {
         assert_eq!(distinct(&full), 6);
         assert_eq!(
             full,
-            [(0, 0), (1, 0), (1, 1), (1, 2), (1, 3), (1, 2), (1, 1), (0, 1)]
-                .into_iter()
-                .map(Cell::from)
-                .collect::<Vec<_>>()
+            [
+                (0, 0),
+                (1, 0),
+                (1, 1),
+                (1, 2),
+                (1, 3),
+                (1, 2),
+                (1, 1),
+                (0, 1)
+            ]
+            .into_iter()
+            .map(Cell::from)
+            .collect::<Vec<_>>()
         );
         // Plain STC drops the half-blocked mega-cell.
         let plain = plan_ascii(&PLAIN, map);

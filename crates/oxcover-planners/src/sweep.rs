@@ -246,7 +246,9 @@ fn order_cells(d: &SliceDecomposition, start: GridPoint, refine: bool) -> (Vec<u
         .map(|lanes| {
             let (mut x, mut y) = (0.0, 0.0);
             for l in lanes {
-                let m = d.slices.point(l.line, 0.5 * (l.interval.lo + l.interval.hi));
+                let m = d
+                    .slices
+                    .point(l.line, 0.5 * (l.interval.lo + l.interval.hi));
                 x += m.0;
                 y += m.1;
             }
@@ -410,7 +412,10 @@ mod tests {
         ];
         assert_eq!(pts.len(), want.len(), "{pts:?}");
         for (a, b) in pts.iter().zip(want) {
-            assert!((a.0 - b.0).abs() < 1e-6 && (a.1 - b.1).abs() < 1e-6, "{pts:?}");
+            assert!(
+                (a.0 - b.0).abs() < 1e-6 && (a.1 - b.1).abs() < 1e-6,
+                "{pts:?}"
+            );
         }
     }
 
@@ -433,7 +438,11 @@ mod tests {
         // A long thin room: lanes along it (0°) beat lanes across it.
         let map = "S...................\n....................\n....................";
         let (p, _) = plan(map, BOU, 1);
-        assert!(p.angle_deg == 0.0 || p.angle_deg == 180.0, "{}", p.angle_deg);
+        assert!(
+            p.angle_deg == 0.0 || p.angle_deg == 180.0,
+            "{}",
+            p.angle_deg
+        );
     }
 
     #[test]

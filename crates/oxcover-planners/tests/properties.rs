@@ -3,11 +3,11 @@
 //! visit every coverage cell; `optimal` is at most every other planner's moves
 //! and at least its lower bound (parity, dead ends, count).
 
+use oxcover_grid::Point;
 use oxcover_grid::random::{random_density, uniform_connected};
+use oxcover_grid::traverse::{cell_center, segment_clear};
 use oxcover_grid::{CoarseGrid, Coverability, DiscRobot, Grid, OccupancyGrid};
 use oxcover_planners::optimal::{Optimal, lower_bound, optimal};
-use oxcover_grid::traverse::{cell_center, segment_clear};
-use oxcover_grid::Point;
 use oxcover_planners::{PlanOutput, PlannerInput, expand, registry};
 
 /// A metre plan (unit frame): starts at the start's representative, every
@@ -16,9 +16,16 @@ use oxcover_planners::{PlanOutput, PlannerInput, expand, registry};
 fn check_metres(input: &PlannerInput<'_>, points: &[Point], complete: bool) -> Result<(), String> {
     let h = input.plannable.height() as f64;
     let pts: Vec<(f64, f64)> = points.iter().map(|p| (p.x, h - p.y)).collect();
-    let rep = input.coarse.representative(input.start).ok_or("no start representative")?;
+    let rep = input
+        .coarse
+        .representative(input.start)
+        .ok_or("no start representative")?;
     if pts.first() != Some(&cell_center(rep)) {
-        return Err(format!("starts at {:?}, not {:?}", pts.first(), cell_center(rep)));
+        return Err(format!(
+            "starts at {:?}, not {:?}",
+            pts.first(),
+            cell_center(rep)
+        ));
     }
     for w in pts.windows(2) {
         if !segment_clear(input.plannable, w[0], w[1]) {
@@ -42,7 +49,11 @@ fn check_metres(input: &PlannerInput<'_>, points: &[Point], complete: bool) -> R
 fn segment_distance(a: (f64, f64), b: (f64, f64), m: (f64, f64)) -> f64 {
     let (dx, dy) = (b.0 - a.0, b.1 - a.1);
     let l2 = dx * dx + dy * dy;
-    let t = if l2 > 0.0 { (((m.0 - a.0) * dx + (m.1 - a.1) * dy) / l2).clamp(0.0, 1.0) } else { 0.0 };
+    let t = if l2 > 0.0 {
+        (((m.0 - a.0) * dx + (m.1 - a.1) * dy) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     (a.0 + t * dx - m.0).hypot(a.1 + t * dy - m.1)
 }
 use proptest::prelude::*;

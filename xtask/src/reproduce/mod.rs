@@ -2,6 +2,7 @@
 //! `docs/reproduction/<name>.md` (tables with the paper's figures beside ours,
 //! an SVG figure, the exact command, and a discussion of differences).
 
+pub mod pavlicek2002;
 pub mod siamantas2010;
 pub mod zhang2008;
 
@@ -13,8 +14,12 @@ pub fn run(name: &str) -> anyhow::Result<()> {
     match name {
         "siamantas2010" => siamantas2010::run(),
         "zhang2008" => zhang2008::run(),
+        "pavlicek2002" => pavlicek2002::run(),
+        "floorplans" => pavlicek2002::run_floorplans(),
         other => {
-            anyhow::bail!("no experiment named `{other}`: expected siamantas2010 or zhang2008")
+            anyhow::bail!(
+                "no experiment named `{other}`: expected siamantas2010, zhang2008, pavlicek2002 or floorplans"
+            )
         }
     }
 }

@@ -1,0 +1,332 @@
+//! `cargo xtask reproduce pavlicek2002` and `cargo xtask reproduce floorplans`:
+//! seed 004's boustrophedon vs border expansion (and trapezoidal) on real
+//! floor plans, its rotation claim, and every planner of the workspace on the
+//! same plans.
+//!
+//! Maps: every ROS map of `../shared/maps/ros` (its yaml) and every image of
+//! `../shared/maps/ipa-floorplans` at 0.05 m/px with the contract's default
+//! thresholds; robot and tool radius 0.3 m; start in the largest admissible
+//! region (its first cell, row-major).
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use oxcover::planner::{PlanOutcome, PlanRequest, plan_with};
+use oxcover::render::{Scene, render_to_file};
+use oxcover::report::metric_rows;
+use oxcover_grid::io::{ReadOptions, read_map};
+use oxcover_grid::rotate::rotate;
+use oxcover_grid::{DiscRobot, OccupancyGrid, Point, admissible, components4};
+use oxcover_planners::border_expansion::BorderExpansionPlanner;
+use oxcover_planners::sweep::{Decomposition, Sweep};
+use oxcover_planners::{Planner, registry};
+use rayon::prelude::*;
+
+use super::dir;
+
+const RADIUS: f64 = 0.3;
+
+fn maps() -> anyhow::Result<Vec<(String, OccupancyGrid)>> {
+    let Some(root) = crate::shared_maps() else {
+        anyhow::bail!("../shared/maps not found next to the workspace");
+    };
+    let mut paths: Vec<PathBuf> = Vec::new();
+    collect(&root.join("ros"), "yaml", &mut paths);
+    let mut ipa: Vec<PathBuf> = Vec::new();
+    collect(&root.join("ipa-floorplans"), "png", &mut ipa);
+    collect(&root.join("ipa-floorplans"), "pgm", &mut ipa);
+    let mut out = Vec::new();
+    for p in paths {
+        out.push((name(&p, &root), read_map(&p, &ReadOptions::default())?));
+    }
+    let opts = ReadOptions {
+        resolution: 0.05,
+        ..ReadOptions::default()
+    };
+    for p in ipa {
+        out.push((name(&p, &root), read_map(&p, &opts)?));
+    }
+    Ok(out)
+}
+
+fn name(p: &Path, root: &Path) -> String {
+    p.strip_prefix(root).unwrap_or(p).display().to_string()
+}
+
+fn collect(dir: &Path, ext: &str, out: &mut Vec<PathBuf>) {
+    let Ok(rd) = std::fs::read_dir(dir) else {
+        return;
+    };
+    let mut v: Vec<PathBuf> = rd.filter_map(|e| e.ok().map(|e| e.path())).collect();
+    v.sort();
+    for p in v {
+        if p.is_dir() {
+            collect(&p, ext, out);
+        } else if p.extension().is_some_and(|e| e == ext) {
+            out.push(p);
+        }
+    }
+}
+
+/// The first cell of the largest admissible region, in metres.
+fn start(map: &OccupancyGrid) -> Option<Point> {
+    let adm = admissible(map, RADIUS);
+    let comps = components4(&adm);
+    let big = comps.largest()?;
+    let cell = adm.true_cells().find(|&c| comps.labels[c] == big)?;
+    Some(map.frame().cell_center(cell))
+}
+
+fn run_plan(map: &OccupancyGrid, planner: &dyn Planner) -> anyhow::Result<PlanOutcome> {
+    let request = PlanRequest {
+        robot: DiscRobot::new(RADIUS, RADIUS)?,
+        start: start(map),
+        ..PlanRequest::new(planner.name(), map.resolution())
+    };
+    Ok(plan_with(map, planner, &request)?)
+}
+
+/// Seed 004's three methods; sweeps at a fixed 0° for the rotation study.
+fn methods(fixed: bool) -> Vec<(&'static str, Box<dyn Planner>)> {
+    let b = Sweep::new(Decomposition::Boustrophedon);
+    let t = Sweep::new(Decomposition::Trapezoidal);
+    vec![
+        (
+            "boustrophedon",
+            Box::new(if fixed { b.at_angle(0.0) } else { b }),
+        ),
+        (
+            "trapezoidal",
+            Box::new(if fixed { t.at_angle(0.0) } else { t }),
+        ),
+        ("border-expansion", Box::new(BorderExpansionPlanner)),
+    ]
+}
+
+/// Cells (sweeps, at the chosen angle) or roads of one plan.
+fn structure(map: &OccupancyGrid, method: &str) -> anyhow::Result<(usize, f64)> {
+    let robot = DiscRobot::new(RADIUS, RADIUS)?;
+    let problem = oxcover_grid::Coverability::new(map, robot, start(map))?;
+    let k = oxcover::planner::coarse_block(&robot, map.resolution());
+    let coarse = oxcover_grid::CoarseGrid::new(&problem.reachable, k);
+    let mut input = oxcover_planners::PlannerInput::new(&problem.reachable, &coarse, problem.start);
+    input.frame = *map.frame();
+    Ok(match method {
+        "border-expansion" => {
+            let p = BorderExpansionPlanner.plan_detailed(&input)?;
+            (p.roads.roads.len(), p.roads.levels as f64)
+        }
+        "trapezoidal" => {
+            let p = Sweep::new(Decomposition::Trapezoidal).plan_detailed(&input)?;
+            (p.decomposition.cells.len(), p.angle_deg)
+        }
+        _ => {
+            let p = Sweep::new(Decomposition::Boustrophedon).plan_detailed(&input)?;
+            (p.decomposition.cells.len(), p.angle_deg)
+        }
+    })
+}
+
+/// Runs `pavlicek2002`.
+///
+/// # Errors
+/// Missing maps, failing plans, file writes.
+pub fn run() -> anyhow::Result<()> {
+    let maps = maps()?;
+    let out = dir()?;
+    let mut md = String::from(
+        "# Pavlicek et al. 2002 (seed 004): boustrophedon vs border expansion\n\nCommand: `cargo xtask reproduce pavlicek2002` (release). Maps: every ROS map of `../shared/maps/ros` and every floor plan of `../shared/maps/ipa-floorplans` (0.05 m/px, contract thresholds); robot and tool radius 0.3 m; start at the first cell of the largest admissible region. `raw` is the planner's own coverage before the boundary pass; `final` includes it. Cells = decomposition cells at the chosen sweep angle; roads = border-expansion roads (levels in brackets).\n\n",
+    );
+    md += "| map | method | raw coverage | final coverage | collisions | length m | turns | cells / roads | angle ° / levels |\n|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+    let rows: Vec<String> = maps
+        .par_iter()
+        .flat_map(|(name, map)| {
+            methods(false)
+                .into_iter()
+                .map(|(m, p)| {
+                    let r = run_plan(map, p.as_ref()).and_then(|o| {
+                        let (n, extra) = structure(map, m)?;
+                        let x = &o.evaluation.metrics;
+                        Ok(format!(
+                            "| {name} | {m} | {:.4} | {:.4} | {} | {:.1} | {} | {n} | {extra:.0} |\n",
+                            o.coverage_without_boundary_pass, x.coverage, x.collisions, x.length_m, x.turns
+                        ))
+                    });
+                    r.unwrap_or_else(|e| format!("| {name} | {m} | error: {e} | | | | | | |\n"))
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    rows.iter().for_each(|r| md += r);
+
+    // Rotation study on the ipa floor plans.
+    md += "\n## Rotation study\n\nEach ipa floor plan rotated by 0–90° in 15° steps (nearest-neighbour resampling, `oxcover_grid::rotate`); the sweeps keep a FIXED 0° lane direction so that only the map turns. Per method: mean over maps of the raw coverage (before the boundary pass) and of the path length relative to the same map at 0°; `spread` is the mean over maps of (max − min) / mean length across the seven angles.\n\n";
+    let angles = [0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0];
+    let ipa: Vec<&(String, OccupancyGrid)> =
+        maps.iter().filter(|(n, _)| n.starts_with("ipa")).collect();
+    let study: Vec<(usize, usize, usize, f64, f64)> = ipa
+        .par_iter()
+        .enumerate()
+        .flat_map(|(mi, (_, map))| {
+            angles
+                .iter()
+                .enumerate()
+                .flat_map(|(ai, &a)| {
+                    let rm = rotate(map, a);
+                    methods(true)
+                        .into_iter()
+                        .enumerate()
+                        .filter_map(|(k, (_, p))| {
+                            run_plan(&rm, p.as_ref()).ok().map(|o| {
+                                (
+                                    mi,
+                                    ai,
+                                    k,
+                                    o.coverage_without_boundary_pass,
+                                    o.evaluation.metrics.length_m,
+                                )
+                            })
+                        })
+                        .collect::<Vec<_>>()
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    md += "| method |";
+    for a in angles {
+        let _ = write!(md, " {a:.0}° coverage / length |");
+    }
+    md += " spread |\n|---|";
+    for _ in angles {
+        md += "---:|";
+    }
+    md += "---:|\n";
+    for (k, (m, _)) in methods(true).iter().enumerate() {
+        let _ = write!(md, "| {m} |");
+        let mut spreads = Vec::new();
+        for mi in 0..ipa.len() {
+            let ls: Vec<f64> = study
+                .iter()
+                .filter(|r| r.0 == mi && r.2 == k)
+                .map(|r| r.4)
+                .collect();
+            if ls.len() == angles.len() {
+                let mean = ls.iter().sum::<f64>() / ls.len() as f64;
+                let (lo, hi) = ls
+                    .iter()
+                    .fold((f64::MAX, f64::MIN), |a, &x| (a.0.min(x), a.1.max(x)));
+                spreads.push((hi - lo) / mean);
+            }
+        }
+        for ai in 0..angles.len() {
+            let cov: Vec<f64> = study
+                .iter()
+                .filter(|r| r.1 == ai && r.2 == k)
+                .map(|r| r.3)
+                .collect();
+            let rel: Vec<f64> = study
+                .iter()
+                .filter(|r| r.1 == ai && r.2 == k)
+                .filter_map(|r| {
+                    study
+                        .iter()
+                        .find(|z| z.0 == r.0 && z.1 == 0 && z.2 == k)
+                        .map(|z| r.4 / z.4)
+                })
+                .collect();
+            let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
+            let _ = write!(md, " {:.3} / {:.3} |", mean(&cov), mean(&rel));
+        }
+        let _ = writeln!(
+            md,
+            " {:.3} |",
+            spreads.iter().sum::<f64>() / spreads.len().max(1) as f64
+        );
+    }
+    // Figure: the three methods on one plan.
+    if let Some((name, map)) = maps.iter().find(|(n, _)| n.ends_with("lab_c.png")) {
+        md += "\n## Figures\n\n";
+        for (m, p) in methods(false) {
+            let o = run_plan(map, p.as_ref())?;
+            let file = format!("pavlicek2002_{m}.png");
+            render_to_file(
+                &Scene {
+                    map,
+                    path: &o.points,
+                    covered: Some(&o.evaluation.covered),
+                    coverable: Some(&o.evaluation.problem.coverable),
+                    title: format!("{name} - {m}"),
+                    rows: metric_rows(&o.evaluation.metrics),
+                },
+                &out.join(&file),
+            )?;
+            let _ = writeln!(md, "![{m} on {name}]({file})\n");
+        }
+    }
+    md += "\n## Discussion\n\nSee the closing notes of issue 4: the claims to check are that border expansion leaves fewer skipped strips next to obstacles than boustrophedon before any extra run along the boundaries (raw coverage), that trapezoidal makes many more cells than boustrophedon, and that border expansion's length varies less with the map's rotation than a fixed-direction boustrophedon.\n";
+    std::fs::write(out.join("pavlicek2002.md"), md)?;
+    println!("wrote {}", out.join("pavlicek2002.md").display());
+    Ok(())
+}
+
+/// Runs `floorplans`: every registered planner on the ipa floor plans.
+///
+/// # Errors
+/// Missing maps, file writes.
+pub fn run_floorplans() -> anyhow::Result<()> {
+    let maps = maps()?;
+    let ipa: Vec<&(String, OccupancyGrid)> =
+        maps.iter().filter(|(n, _)| n.starts_with("ipa")).collect();
+    let out = dir()?;
+    let mut md = String::from(
+        "# Every planner on the ipa floor plans\n\nCommand: `cargo xtask reproduce floorplans` (release, rayon over maps). Robot and tool radius 0.3 m, 0.05 m/px, start at the first cell of the largest admissible region, boundary pass on. Per planner: means over the maps it accepted (`refused` counts maps beyond its size limit); `min coverage` is the worst map; `plan ms` is the whole pipeline (coverage problem, planner, boundary pass).\n\n| planner | maps | refused | min coverage | mean coverage | raw coverage | collisions | length m | turns | est_time_s | plan ms |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+    );
+    for p in registry() {
+        let res: Vec<anyhow::Result<PlanOutcome>> =
+            ipa.par_iter().map(|(_, m)| run_plan(m, *p)).collect();
+        let ok: Vec<&PlanOutcome> = res.iter().filter_map(|r| r.as_ref().ok()).collect();
+        let n = ok.len().max(1) as f64;
+        let mean = |f: &dyn Fn(&PlanOutcome) -> f64| ok.iter().map(|o| f(o)).sum::<f64>() / n;
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {:.4} | {:.4} | {:.4} | {} | {:.0} | {:.0} | {:.0} | {:.0} |",
+            p.name(),
+            ok.len(),
+            res.len() - ok.len(),
+            ok.iter()
+                .map(|o| o.evaluation.metrics.coverage)
+                .fold(1.0, f64::min),
+            mean(&|o| o.evaluation.metrics.coverage),
+            mean(&|o| o.coverage_without_boundary_pass),
+            ok.iter()
+                .map(|o| o.evaluation.metrics.collisions)
+                .sum::<usize>(),
+            mean(&|o| o.evaluation.metrics.length_m),
+            mean(&|o| o.evaluation.metrics.turns as f64),
+            mean(&|o| o.evaluation.metrics.est_time_s),
+            mean(&|o| o.plan_ms),
+        );
+    }
+    if let Some((name, map)) = ipa.iter().find(|(n, _)| n.ends_with("lab_c.png")) {
+        md += "\n## One PNG per planner (lab_c)\n\n";
+        for p in registry() {
+            let Ok(o) = run_plan(map, *p) else { continue };
+            let file = format!("floorplans_{}.png", p.name());
+            render_to_file(
+                &Scene {
+                    map,
+                    path: &o.points,
+                    covered: Some(&o.evaluation.covered),
+                    coverable: Some(&o.evaluation.problem.coverable),
+                    title: format!("{name} - {}", p.name()),
+                    rows: metric_rows(&o.evaluation.metrics),
+                },
+                &out.join(&file),
+            )?;
+            let _ = writeln!(md, "![{} on {name}]({file})\n", p.name());
+        }
+    }
+    std::fs::write(out.join("floorplans.md"), md)?;
+    println!("wrote {}", out.join("floorplans.md").display());
+    Ok(())
+}
