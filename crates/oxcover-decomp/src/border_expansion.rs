@@ -322,7 +322,7 @@ mod tests {
         for (i, r) in b.roads.iter().enumerate() {
             if r.level > 0 {
                 assert!(b.components[r.component].parent.is_some());
-                assert!(b.edges.iter().any(|&(a, z)| (a == i || z == i)));
+                assert!(b.edges.iter().any(|&(a, z)| a == i || z == i));
             }
         }
     }
