@@ -10,9 +10,9 @@
 //!   nodes, and rectangles grown next to blocked neighbours.
 //! - [`slices`]: a grid cut by parallel lanes at any angle into free
 //!   intervals, and cellular decompositions built from them with their
-//!   adjacency graphs: [`boustrophedon`] (Choset & Pignon: cut at critical
-//!   events) and [`trapezoidal`] (also cut where a side bends).
-//! - [`border_expansion`]: seed 004's roads, the boundaries of successive
+//!   adjacency graphs: [`boustrophedon`](mod@boustrophedon) (Choset & Pignon: cut at critical
+//!   events) and [`trapezoidal`](mod@trapezoidal) (also cut where a side bends).
+//! - [`border_expansion`](mod@border_expansion): seed 004's roads, the boundaries of successive
 //!   offsets of the obstacles, with safety levels and the road graph.
 //!
 //! ```

@@ -1,6 +1,6 @@
 //! Slices of a grid along parallel lines, and the cellular decompositions
-//! built from them (the common ground of [`crate::boustrophedon`] and
-//! [`crate::trapezoidal`]).
+//! built from them (the common ground of [`crate::boustrophedon`](mod@crate::boustrophedon) and
+//! [`crate::trapezoidal`](mod@crate::trapezoidal)).
 //!
 //! A sweep at angle `θ` (map frame, counter-clockwise from +x) lays parallel
 //! lines `spacing` apart across the passable cells; each line is cut into its

@@ -1,7 +1,7 @@
 //! Trapezoidal (slab) decomposition (Latombe 1991; Preparata & Shamos 1985)
 //! on grid slices.
 //!
-//! Every boustrophedon event cuts (see [`crate::boustrophedon`]), and so does
+//! Every boustrophedon event cuts (see [`crate::boustrophedon`](mod@crate::boustrophedon)), and so does
 //! every vertex of a cell's side: a new cell starts wherever an interval's
 //! start or end stops changing linearly along the sweep, i.e. where the
 //! boundary bends. On a grid a straight wall at an angle moves in steps of

@@ -1,6 +1,6 @@
 //! Border-expansion coverage (Pavlicek et al., seed 004, §5).
 //!
-//! The roads of [`oxcover_decomp::border_expansion`] (successive offsets of the
+//! The roads of [`oxcover_decomp::border_expansion()`] (successive offsets of the
 //! obstacles and the outer border, one coverage cell apart, from an exact
 //! distance transform) are driven one after the other. The walk starts on the
 //! outer road of level 0 (the paper's A₁) and is exhaustive over the road
@@ -9,11 +9,11 @@
 //! nearest first), so every road is passed once. A road is entered at its cell
 //! nearest to the robot and driven once around; its staircase of cells is
 //! straightened within half a cell. Transitions are shortest routes over the
-//! fine grid, straightened without crossing walls ([`PathBuilder`]).
+//! fine grid, straightened without crossing walls (`PathBuilder`).
 //!
 //! Inner regions where offsets vanish (narrower than a lane) and strips a road
 //! leaves between itself and the next are then covered by visiting the
-//! remaining coverage cells ([`PathBuilder::cover_leftovers`]). The result is
+//! remaining coverage cells (`PathBuilder::cover_leftovers`). The result is
 //! a metre path; it does not depend on the map's rotation beyond pixel effects.
 
 use oxcover_decomp::{BorderExpansion, border_expansion};

@@ -8,7 +8,7 @@
 //! each shortcut again checked by traversal. So no segment ever crosses a wall,
 //! which is the usual failure of sweep planners that join cells by straight lines.
 //!
-//! [`PathBuilder::cover_leftovers`] makes the result complete on the coverage
+//! `PathBuilder::cover_leftovers` makes the result complete on the coverage
 //! grid: it visits, nearest first, every coverage cell whose representative
 //! lies farther than half a coverage cell from the path (lane ends near
 //! walls, inner strips where offsets vanish).

@@ -3,19 +3,19 @@
 //!
 //! 1. **Decompose** the plannable cells with lanes one coverage cell apart
 //!    (the tool diameter rounded down to whole cells, so lanes leave no gap)
-//!    at a sweep angle: [`oxcover_decomp::boustrophedon`] or
-//!    [`oxcover_decomp::trapezoidal`]. Each decomposition cell is covered by
+//!    at a sweep angle: [`oxcover_decomp::boustrophedon()`] or
+//!    [`oxcover_decomp::trapezoidal()`]. Each decomposition cell is covered by
 //!    its own lanes, driven back and forth.
 //! 2. **Order** the cells: distances between cells are shortest paths over the
 //!    adjacency graph (edge weight = distance between the cells' centroids);
 //!    a greedy nearest-neighbour order from the start's cell is improved by
 //!    2-opt (open tour, first cell fixed). Each cell is then entered at the
 //!    lane end (first or last lane, either end) nearest to where the robot is.
-//! 3. **Connect**: lane to lane and cell to cell by [`PathBuilder::go_to`]:
+//! 3. **Connect**: lane to lane and cell to cell by `PathBuilder::go_to`:
 //!    straight only where exact traversal finds every crossed cell plannable,
 //!    else a shortest fine-grid route, straightened. Never through a wall.
 //! 4. **Complete**: coverage cells the lanes missed (ends next to walls) are
-//!    visited nearest first ([`PathBuilder::cover_leftovers`]).
+//!    visited nearest first (`PathBuilder::cover_leftovers`).
 //!
 //! **Sweep angle**: fixed, or (default) the best of [`ANGLES_DEG`] by an
 //! estimate of the path length (lanes + lane changes + greedy Euclidean
