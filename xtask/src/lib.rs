@@ -4,7 +4,8 @@
 //! - [`bench`](mod@bench): run the criterion benchmarks and write their figures, with the
 //!   reference ratios and cells-touched counts, into `docs/benchmarks.md`.
 //! - [`maps`]: plan and score every real map in `../shared/maps`; `docs/maps.md`.
-//! - [`reproduce`]: the paper reproductions (`siamantas2010`, `zhang2008`),
+//! - [`reproduce`]: the paper reproductions (`siamantas2010`, `zhang2008`,
+//!   `pavlicek2002`, `floorplans`),
 //!   each writing `docs/reproduction/<name>.md` with a table, an SVG figure
 //!   and the command.
 //! - [`sweep`]: any planner set over seeded random maps, one JSON line per map,
@@ -32,6 +33,20 @@ pub fn root() -> PathBuf {
 pub fn shared_maps() -> Option<PathBuf> {
     let p = root().join("../shared/maps");
     p.is_dir().then_some(p)
+}
+
+/// The first cell (row-major) of the largest region of cells admissible for
+/// a disc of `robot_radius`: the start of the real-map experiments, since a
+/// SLAM map's first admissible cell is often a speck of noise.
+#[must_use]
+pub fn largest_region_start(
+    map: &oxcover_grid::OccupancyGrid,
+    robot_radius: f64,
+) -> Option<oxcover_grid::Cell> {
+    let adm = oxcover_grid::admissible(map, robot_radius);
+    let comps = oxcover_grid::components4(&adm);
+    let big = comps.largest()?;
+    adm.true_cells().find(|&c| comps.labels[c] == big)
 }
 
 /// Replaces the text between `<!-- BEGIN name -->` and `<!-- END name -->` in `file`.

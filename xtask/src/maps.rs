@@ -12,7 +12,7 @@ use oxcover::metrics::{MetricParams, evaluate};
 use oxcover::path::{read_csv, write_csv};
 use oxcover::planner::{PlanRequest, plan};
 use oxcover_grid::io::{ReadOptions, read_map};
-use oxcover_grid::{DiscRobot, OccupancyGrid, Point, admissible, components4};
+use oxcover_grid::{DiscRobot, OccupancyGrid, Point};
 use rayon::prelude::*;
 
 /// A map, a setting name, and optional (robot, tool) radii.
@@ -107,13 +107,8 @@ fn check(
     let default_start =
         plan_and_score(&map, robot, None, &dir.join(format!("{stem}-default.csv")))?;
     // The first admissible cell of the largest admissible region.
-    let adm = admissible(&map, robot.robot_radius);
-    let comps = components4(&adm);
-    let big = comps.largest().context("no admissible cell")?;
-    let cell = adm
-        .true_cells()
-        .find(|&c| comps.labels[c] == big)
-        .context("no admissible cell")?;
+    let cell =
+        crate::largest_region_start(&map, robot.robot_radius).context("no admissible cell")?;
     let start = Some(map.frame().cell_center(cell));
     let largest = plan_and_score(&map, robot, start, &dir.join(format!("{stem}-largest.csv")))?;
     Ok(Row {

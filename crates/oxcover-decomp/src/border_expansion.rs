@@ -265,9 +265,8 @@ mod tests {
     use super::*;
 
     fn mask(rows: &[&str]) -> Grid<bool> {
-        let h = rows.len();
-        let w = rows[0].len();
-        Grid::from_fn(w, h, |c| rows[c.row].as_bytes()[c.col] == b'.')
+        let (map, _) = oxcover_grid::io::parse_ascii(&rows.join("\n")).expect("valid map");
+        map.free_mask()
     }
 
     fn is_loop(cells: &[Cell]) -> bool {

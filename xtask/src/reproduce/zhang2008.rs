@@ -21,7 +21,7 @@ use oxcover::render::{Scene, render_svg};
 use oxcover::report::metric_rows;
 use oxcover_grid::io::{ReadOptions, read_map};
 use oxcover_grid::random::{blobs, rectangles};
-use oxcover_grid::{DiscRobot, OccupancyGrid, Point, admissible, components4};
+use oxcover_grid::{DiscRobot, OccupancyGrid, Point};
 use rayon::prelude::*;
 
 use super::dir;
@@ -121,11 +121,7 @@ pub fn cases() -> Vec<Case> {
 /// The start: first cell of the largest admissible region (a SLAM map's first
 /// free cell is often noise).
 fn start_of(case: &Case) -> Option<Point> {
-    let adm = admissible(&case.map, case.robot.robot_radius);
-    let comps = components4(&adm);
-    let big = comps.largest()?;
-    adm.true_cells()
-        .find(|&c| comps.labels[c] == big)
+    crate::largest_region_start(&case.map, case.robot.robot_radius)
         .map(|c| case.map.frame().cell_center(c))
 }
 
