@@ -2,6 +2,8 @@
 //!
 //! Grid distance transforms for coverage planning, on 4-connected moves:
 //!
+//! - [`astar`]: A* between two cells (Manhattan heuristic, bucket queue), the
+//!   same route lengths as a wavefront at a fraction of the cells touched.
 //! - [`lee`]: the Lee wavefront as a reusable workspace ([`Wavefront`]):
 //!   multi-source, optional per-cell move masks, retrace that keeps direction.
 //! - [`zelinsky`]: Zelinsky's distance transform and path transform
@@ -29,6 +31,7 @@
 //! assert_eq!(wave.retrace(near.first()).unwrap().len(), 6);
 //! ```
 
+pub mod astar;
 pub mod brushfire;
 pub mod cfcidt;
 pub mod cidt;
@@ -36,6 +39,7 @@ pub mod lee;
 pub mod reference;
 pub mod zelinsky;
 
+pub use astar::AStar;
 pub use brushfire::{Connectivity, brushfire};
 pub use cfcidt::{BlockMap, CoarseToFine, CoarseToFineFound};
 pub use cidt::{Nearest, cidt};

@@ -9,12 +9,17 @@
 //!   `h(k) = max(0, 2|k| − 1)²`.
 //! - [`center_distance_sq`]: `d²` between cell centres, `h(k) = k²`.
 //!
-//! Both are separable: a column pass, then a row pass computing
-//! `D(c) = min_q G(q) + h(c − q)` by the lower envelope of the functions
-//! `G(q) + h(· − q)`. Because `h` is convex, two such functions cross once, so
-//! the envelope is built in one sweep; the crossing is found by binary search
-//! (the kernel need not be a parabola). O(n log n) per line, O(cells·log)
-//! in total.
+//! Both are separable: a column pass (distance to the nearest source in the
+//! column), then a row pass computing `D(x) = min_q G(q) + h(x − q)` by the
+//! lower envelope of parabolas (Felzenszwalb & Huttenlocher), with the
+//! crossing of two parabolas in closed form: O(n) per line.
+//!
+//! The boundary kernel is not a parabola, but for `x ≠ q` it is one in the
+//! doubled coordinate: `h(x − q) = (2x − e)²` with `e = 2q ± 1` the edge of
+//! cell `q` facing `x` (the far edge only ever gives a larger value). So the
+//! row pass runs a parabola envelope over the cell edges `e = 2i − 1`, each
+//! with the smaller `G` of the two cells it separates, evaluated at `2x`, and
+//! takes `G(x)` itself where smaller (`h(0) = 0`).
 
 use crate::grid::Grid;
 
@@ -27,11 +32,7 @@ pub const INFINITE: u64 = u64::MAX;
 /// (the map edge is a wall). Cells with no source at all get [`INFINITE`].
 #[must_use]
 pub fn boundary_distance_sq4(sources: &Grid<bool>, outside_is_source: bool) -> Grid<u64> {
-    fn h(k: i64) -> u64 {
-        let g = (2 * k.unsigned_abs()).saturating_sub(1);
-        g * g
-    }
-    transform(sources, outside_is_source, h)
+    transform(sources, outside_is_source, Kernel::Boundary)
 }
 
 /// `d²` (cells²) from each cell centre to the nearest source cell centre.
@@ -39,134 +40,146 @@ pub fn boundary_distance_sq4(sources: &Grid<bool>, outside_is_source: bool) -> G
 /// Cells with no source at all get [`INFINITE`].
 #[must_use]
 pub fn center_distance_sq(sources: &Grid<bool>) -> Grid<u64> {
-    fn h(k: i64) -> u64 {
-        k.unsigned_abs() * k.unsigned_abs()
-    }
-    transform(sources, false, h)
+    transform(sources, false, Kernel::Center)
 }
 
-fn transform(sources: &Grid<bool>, outside: bool, h: fn(i64) -> u64) -> Grid<u64> {
+/// The per-axis kernel `h`.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Kernel {
+    /// `h(k) = max(0, 2|k| − 1)²`: centre to the boundary of a cell.
+    Boundary,
+    /// `h(k) = k²`: centre to centre.
+    Center,
+}
+
+impl Kernel {
+    fn h(self, k: i64) -> u64 {
+        let k = k.unsigned_abs();
+        match self {
+            Self::Boundary => (2 * k).saturating_sub(1).pow(2),
+            Self::Center => k * k,
+        }
+    }
+}
+
+fn transform(sources: &Grid<bool>, outside: bool, kernel: Kernel) -> Grid<u64> {
+    let h = |k: i64| kernel.h(k);
     let (w, hgt) = (sources.width(), sources.height());
     // Column pass: h of the distance to the nearest source in the column. `h` is
-    // monotone in |k|, so the nearest source row gives the minimum.
+    // monotone in |k|, so the nearest source row gives the minimum. Rows are
+    // walked in memory order, every column at once.
     let mut g = vec![INFINITE; w * hgt];
     let src = sources.as_slice();
-    for c in 0..w {
-        // Distance (in rows) to the nearest source above, then below.
-        let mut last: Option<i64> = if outside { Some(-1) } else { None };
-        for r in 0..hgt {
-            if src[r * w + c] {
-                last = Some(r as i64);
-            }
-            if let Some(l) = last {
-                g[r * w + c] = h(r as i64 - l);
-            }
-        }
-        let mut next: Option<i64> = if outside { Some(hgt as i64) } else { None };
-        for r in (0..hgt).rev() {
-            if src[r * w + c] {
-                next = Some(r as i64);
-            }
-            if let Some(n) = next {
-                let v = h(n - r as i64);
-                if v < g[r * w + c] {
-                    g[r * w + c] = v;
-                }
-            }
-        }
-    }
-    // Row pass.
-    let mut out = vec![INFINITE; w * hgt];
-    let mut env = Envelope::with_capacity(w + 2);
-    let mut line = vec![INFINITE; w + 2];
-    let mut res = vec![INFINITE; w + 2];
+    let none = if outside { -1 } else { i64::MIN };
+    let mut last = vec![none; w];
     for r in 0..hgt {
-        if outside {
-            // Columns -1 and w are walls: G = 0 there. Shift by one.
-            line[0] = 0;
-            line[1..=w].copy_from_slice(&g[r * w..(r + 1) * w]);
-            line[w + 1] = 0;
-            env.run(&line, h, &mut res);
-            out[r * w..(r + 1) * w].copy_from_slice(&res[1..=w]);
-        } else {
-            env.run(&g[r * w..(r + 1) * w], h, &mut res[..w]);
-            out[r * w..(r + 1) * w].copy_from_slice(&res[..w]);
+        let (row, out) = (&src[r * w..(r + 1) * w], &mut g[r * w..(r + 1) * w]);
+        for c in 0..w {
+            if row[c] {
+                last[c] = r as i64;
+            }
+            if last[c] != i64::MIN {
+                out[c] = h(r as i64 - last[c]);
+            }
         }
     }
-    Grid::from_vec(w, hgt, out).unwrap_or_else(|| Grid::new(w, hgt, INFINITE))
+    let none = if outside { hgt as i64 } else { i64::MIN };
+    let next = &mut last;
+    next.fill(none);
+    for r in (0..hgt).rev() {
+        let (row, out) = (&src[r * w..(r + 1) * w], &mut g[r * w..(r + 1) * w]);
+        for c in 0..w {
+            if row[c] {
+                next[c] = r as i64;
+            }
+            if next[c] != i64::MIN {
+                out[c] = out[c].min(h(next[c] - r as i64));
+            }
+        }
+    }
+    // Row pass, on lines padded with a wall column each side when the
+    // outside is a source.
+    let mut env = Envelope::default();
+    let pad = usize::from(outside);
+    let m = w + 2 * pad;
+    let mut line = vec![0u64; m];
+    for r in 0..hgt {
+        line[pad..pad + w].copy_from_slice(&g[r * w..(r + 1) * w]);
+        let out = &mut g[r * w..(r + 1) * w];
+        if kernel == Kernel::Boundary {
+            // Edge `i` (doubled coordinate 2i − 1) lies between cells i−1 and i.
+            env.build((0..=m).map(|i| {
+                let left = if i > 0 { line[i - 1] } else { INFINITE };
+                let right = line.get(i).copied().unwrap_or(INFINITE);
+                (2 * i as i64 - 1, left.min(right))
+            }));
+            for (x, o) in out.iter_mut().enumerate() {
+                let xp = x + pad;
+                *o = line[xp].min(env.eval(2 * xp as i64));
+            }
+        } else {
+            env.build(line.iter().enumerate().map(|(q, &v)| (q as i64, v)));
+            for (x, o) in out.iter_mut().enumerate() {
+                *o = env.eval((x + pad) as i64);
+            }
+        }
+    }
+    Grid::from_vec(w, hgt, g).unwrap_or_else(|| Grid::new(w, hgt, INFINITE))
 }
 
-/// Lower envelope of `f(q) + h(x − q)` over the sources `q` of one line.
+/// Lower envelope of the parabolas `v + (x − c)²` of one line.
+#[derive(Default)]
 struct Envelope {
-    v: Vec<usize>,
-    z: Vec<i64>,
+    /// Parabolas `(c, v)` of the envelope, left to right.
+    v: Vec<(i64, u64)>,
+    /// Where each starts to be the lowest.
+    z: Vec<f64>,
+    /// Evaluation cursor.
+    k: usize,
 }
 
 impl Envelope {
-    fn with_capacity(n: usize) -> Self {
-        Self {
-            v: Vec::with_capacity(n),
-            z: Vec::with_capacity(n),
-        }
-    }
-
-    fn run(&mut self, f: &[u64], h: fn(i64) -> u64, out: &mut [u64]) {
-        let n = f.len();
+    /// Builds the envelope of `(c, v)` with increasing `c` (infinite `v` skipped).
+    fn build(&mut self, parabolas: impl Iterator<Item = (i64, u64)>) {
         self.v.clear();
         self.z.clear();
-        for q in 0..n {
-            if f[q] == INFINITE {
+        self.k = 0;
+        for (c, v) in parabolas {
+            if v == INFINITE {
                 continue;
             }
+            let key = v as i64 + c * c;
             loop {
-                let Some(&p) = self.v.last() else {
-                    self.v.push(q);
-                    self.z.push(i64::MIN);
+                let Some(&(pc, pv)) = self.v.last() else {
+                    self.v.push((c, v));
+                    self.z.push(f64::NEG_INFINITY);
                     break;
                 };
-                let s = first_dominated(f, h, p, q, n);
-                if s <= *self.z.last().unwrap_or(&i64::MIN) {
+                // Crossing of the two parabolas.
+                let s = (key - (pv as i64 + pc * pc)) as f64 / (2 * (c - pc)) as f64;
+                if s <= *self.z.last().unwrap_or(&f64::NEG_INFINITY) {
                     self.v.pop();
                     self.z.pop();
                     continue;
                 }
-                if s < n as i64 {
-                    self.v.push(q);
-                    self.z.push(s);
-                }
+                self.v.push((c, v));
+                self.z.push(s);
                 break;
             }
         }
-        if self.v.is_empty() {
-            out.fill(INFINITE);
-            return;
-        }
-        let mut j = 0;
-        for (x, o) in out.iter_mut().enumerate() {
-            while j + 1 < self.v.len() && self.z[j + 1] <= x as i64 {
-                j += 1;
-            }
-            let q = self.v[j];
-            *o = f[q] + h(x as i64 - q as i64);
-        }
     }
-}
 
-/// First `x` in `0..n` where `f(q) + h(x−q) <= f(p) + h(x−p)` (`q > p`), or `n`.
-///
-/// The difference is non-increasing in `x` for convex `h`, so binary search works.
-fn first_dominated(f: &[u64], h: fn(i64) -> u64, p: usize, q: usize, n: usize) -> i64 {
-    let better = |x: i64| f[q] + h(x - q as i64) <= f[p] + h(x - p as i64);
-    let (mut lo, mut hi) = (0i64, n as i64);
-    while lo < hi {
-        let mid = lo + (hi - lo) / 2;
-        if better(mid) {
-            hi = mid;
-        } else {
-            lo = mid + 1;
+    /// The envelope at `x`; calls must come with non-decreasing `x`.
+    fn eval(&mut self, x: i64) -> u64 {
+        if self.v.is_empty() {
+            return INFINITE;
         }
+        while self.k + 1 < self.v.len() && self.z[self.k + 1] <= x as f64 {
+            self.k += 1;
+        }
+        let (c, v) = self.v[self.k];
+        v + (x - c).unsigned_abs().pow(2)
     }
-    lo
 }
 
 #[cfg(test)]
@@ -214,6 +227,21 @@ mod tests {
             prop_assert_eq!(boundary_distance_sq4(&sources, outside), brute(&sources, outside, true));
             prop_assert_eq!(center_distance_sq(&sources), brute(&sources, false, false));
         }
+    }
+
+    #[test]
+    fn matches_brute_force_on_a_larger_grid() {
+        // Long lines, where envelopes hold many parabolas.
+        let sources = crate::random::random_density(61, 47, 0.02, 7)
+            .free_mask()
+            .map(|f| !f);
+        for outside in [false, true] {
+            assert_eq!(
+                boundary_distance_sq4(&sources, outside),
+                brute(&sources, outside, true)
+            );
+        }
+        assert_eq!(center_distance_sq(&sources), brute(&sources, false, false));
     }
 
     #[test]

@@ -66,6 +66,14 @@ fn floorplan(c: &mut Criterion) {
         let planner = find(name).expect("registered");
         g.bench_function(name, |b| b.iter(|| black_box(planner.plan(&input))));
     }
+    // Border expansion's parts: the exact distance transform, then the roads.
+    let blocked = problem.reachable.map(|&p| !p);
+    g.bench_function("parts/edt", |b| {
+        b.iter(|| black_box(oxcover_grid::edt::boundary_distance_sq4(&blocked, true)));
+    });
+    g.bench_function("parts/border-expansion-roads", |b| {
+        b.iter(|| black_box(oxcover_decomp::border_expansion(&problem.reachable, 12.0)));
+    });
     g.finish();
 }
 

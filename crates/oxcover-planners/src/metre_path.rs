@@ -13,7 +13,7 @@
 //! lies farther than half a coverage cell from the path (lane ends near
 //! walls, inner strips where offsets vanish).
 
-use oxcover_distance::{Wavefront, cidt};
+use oxcover_distance::{AStar, Wavefront, cidt};
 use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear};
 use oxcover_grid::{Cell, CoarseGrid, Grid, MapFrame, Point};
 
@@ -24,6 +24,7 @@ use crate::error::{Error, Result};
 pub(crate) struct PathBuilder<'a> {
     plannable: &'a Grid<bool>,
     wave: Wavefront,
+    astar: AStar,
     points: Vec<GridPoint>,
 }
 
@@ -33,6 +34,7 @@ impl<'a> PathBuilder<'a> {
         Self {
             plannable,
             wave: Wavefront::new(plannable),
+            astar: AStar::new(plannable),
             points: vec![cell_center(start)],
         }
     }
@@ -72,13 +74,11 @@ impl<'a> PathBuilder<'a> {
         Ok(())
     }
 
-    /// A shortest 4-connected route `a ..= b` of plannable cells.
+    /// A shortest 4-connected route `a ..= b` of plannable cells (A*).
     fn route(&mut self, a: Cell, b: Cell) -> Result<Vec<Cell>> {
-        let near = cidt(&mut self.wave, &[a], |c| c == b)
-            .ok_or_else(|| Error::Internal(format!("no route {a:?} -> {b:?}")))?;
-        self.wave
-            .retrace(near.first())
-            .ok_or_else(|| Error::Internal("route retrace failed".into()))
+        self.astar
+            .route(a, b)
+            .ok_or_else(|| Error::Internal(format!("no route {a:?} -> {b:?}")))
     }
 
     /// Follows the 4-connected cell walk `cells` (its first cell is where the
@@ -90,6 +90,12 @@ impl<'a> PathBuilder<'a> {
 
     /// Appends the route's cell centres (then `end`), skipping those a clear
     /// straight shortcut makes unnecessary and that lie within `tolerance` of it.
+    ///
+    /// From each anchor the shortcut's far end is found by galloping (1, 2, 4,
+    /// … targets ahead) and then bisecting between the last good and the first
+    /// bad end. Every accepted shortcut is checked (clear, and within
+    /// `tolerance` of every skipped centre), so the result is always valid;
+    /// the search costs O(log n) checks per shortcut instead of O(n).
     fn straighten(&mut self, cells: &[Cell], end: Option<GridPoint>, tolerance: f64) {
         let mut targets: Vec<GridPoint> = cells.iter().map(|&c| cell_center(c)).collect();
         if let Some(e) = end {
@@ -98,20 +104,38 @@ impl<'a> PathBuilder<'a> {
         let mut anchor = self.last();
         let mut i = 0;
         while i < targets.len() {
-            // Extend the shortcut from `anchor` as far as it stays clear and close.
-            let mut j = i;
-            while j + 1 < targets.len()
-                && segment_clear(self.plannable, anchor, targets[j + 1])
-                && (tolerance.is_infinite()
-                    || targets[i..=j]
-                        .iter()
-                        .all(|&m| deviation(anchor, targets[j + 1], m) <= tolerance))
-            {
-                j += 1;
+            // Can the path go straight from `anchor` to `targets[j]`, skipping
+            // `targets[i..j]`?
+            let ok = |j: usize| {
+                segment_clear(self.plannable, anchor, targets[j])
+                    && (tolerance.is_infinite()
+                        || targets[i..j]
+                            .iter()
+                            .all(|&m| deviation(anchor, targets[j], m) <= tolerance))
+            };
+            // `good` passes (or is `i`, always taken); `bad` fails or is past the end.
+            let (mut good, mut bad) = (i, targets.len());
+            let mut step = 1;
+            while good + step < targets.len() {
+                if ok(good + step) {
+                    good += step;
+                    step *= 2;
+                } else {
+                    bad = good + step;
+                    break;
+                }
             }
-            self.push(targets[j]);
-            anchor = targets[j];
-            i = j + 1;
+            while bad - good > 1 {
+                let mid = good + (bad - good) / 2;
+                if ok(mid) {
+                    good = mid;
+                } else {
+                    bad = mid;
+                }
+            }
+            self.push(targets[good]);
+            anchor = targets[good];
+            i = good + 1;
         }
     }
 
@@ -163,12 +187,16 @@ fn deviation(a: GridPoint, b: GridPoint, m: GridPoint) -> f64 {
     (px * px + py * py).sqrt()
 }
 
-/// Clears `wanted` at representatives within `radius` of the polyline
-/// `points` (sampled every quarter cell).
+/// Clears `wanted` at representatives within `radius` (at most half a
+/// coverage cell) of the polyline `points`, by exact point-to-segment distance.
+///
+/// Each segment is sampled every half coverage cell; a representative within
+/// `radius` of the segment is then within ¾ of a coverage cell of a sample, so
+/// it lies in one of the 3×3 coverage cells around that sample.
 fn mark_near(coarse: &CoarseGrid, points: &[GridPoint], radius: f64, wanted: &mut Grid<bool>) {
     let reps = coarse.representatives();
     let k = coarse.block_size() as f64;
-    let mut visit = |p: GridPoint| {
+    let mut visit = |p: GridPoint, a: GridPoint, b: GridPoint| {
         let (bc, br) = ((p.0 / k).floor() as i64, (p.1 / k).floor() as i64);
         for r in br - 1..=br + 1 {
             for c in bc - 1..=bc + 1 {
@@ -178,24 +206,22 @@ fn mark_near(coarse: &CoarseGrid, points: &[GridPoint], radius: f64, wanted: &mu
                 let Some(Some(rep)) = reps.get(Cell::new(r as usize, c as usize)) else {
                     continue;
                 };
-                let (x, y) = cell_center(*rep);
-                let (dx, dy) = (x - p.0, y - p.1);
-                if dx * dx + dy * dy <= radius * radius {
+                if wanted[*rep] && deviation(a, b, cell_center(*rep)) <= radius {
                     wanted[*rep] = false;
                 }
             }
         }
     };
     if let [only] = points {
-        visit(*only);
+        visit(*only, *only, *only);
     }
     for w in points.windows(2) {
         let (a, b) = (w[0], w[1]);
         let len = (b.0 - a.0).hypot(b.1 - a.1);
-        let n = (len / 0.25).ceil().max(1.0) as usize;
+        let n = (len / (k / 2.0)).ceil().max(1.0) as usize;
         for i in 0..=n {
             let t = i as f64 / n as f64;
-            visit((a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)));
+            visit((a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)), a, b);
         }
     }
 }
