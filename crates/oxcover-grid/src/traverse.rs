@@ -50,25 +50,21 @@ pub fn traverse(
     let mut cy = a.1.floor() as i64;
     let step_x: i64 = if dx > 0.0 { 1 } else { -1 };
     let step_y: i64 = if dy > 0.0 { 1 } else { -1 };
-    let inv = |d: f64| {
+    // The parameter where the segment meets the next border of each axis,
+    // computed afresh from the border's coordinate at every step (not
+    // accumulated), so that two borders met at one corner give equal values
+    // whenever the coordinates are exact (cell centres, half cells).
+    let border_t = |border: i64, p: f64, d: f64| {
         if d == 0.0 {
             f64::INFINITY
         } else {
-            1.0 / d.abs()
+            (border as f64 - p) / d
         }
     };
-    let (dtx, dty) = (inv(dx), inv(dy));
-    let next_boundary = |p: f64, c: i64, d: f64| {
-        if d > 0.0 {
-            (c as f64 + 1.0 - p) / d
-        } else if d < 0.0 {
-            (p - c as f64) / -d
-        } else {
-            f64::INFINITY
-        }
-    };
-    let mut tx = next_boundary(a.0, cx, dx);
-    let mut ty = next_boundary(a.1, cy, dy);
+    let mut bx = if dx > 0.0 { cx + 1 } else { cx };
+    let mut by = if dy > 0.0 { cy + 1 } else { cy };
+    let mut tx = border_t(bx, a.0, dx);
+    let mut ty = border_t(by, a.1, dy);
     let mut t = 0.0;
     let cell = |cx: i64, cy: i64| {
         (cx >= 0 && cy >= 0 && (cx as usize) < width && (cy as usize) < height)
@@ -85,26 +81,36 @@ pub fn traverse(
             return true;
         }
         t = t_out;
-        if tx < ty {
-            cx += step_x;
-            tx += dtx;
-        } else if ty < tx {
-            cy += step_y;
-            ty += dty;
-        } else {
-            // Through a corner: both cells beside it are touched at one
-            // point (either may own that point), then the diagonal cell.
+        if (tx - ty).abs() <= CORNER_EPS {
+            // Through a corner (or within rounding of one): both cells beside
+            // it are touched at one point (either may own that point), then
+            // the diagonal cell.
             if !f(cell(cx + step_x, cy), t, t) || !f(cell(cx, cy + step_y), t, t) {
                 return false;
             }
             cx += step_x;
             cy += step_y;
-            tx += dtx;
-            ty += dty;
+            bx += step_x;
+            by += step_y;
+            tx = border_t(bx, a.0, dx);
+            ty = border_t(by, a.1, dy);
+        } else if tx < ty {
+            cx += step_x;
+            bx += step_x;
+            tx = border_t(bx, a.0, dx);
+        } else {
+            cy += step_y;
+            by += step_y;
+            ty = border_t(by, a.1, dy);
         }
     }
     true
 }
+
+/// Segment parameters this close count as one corner: the segment is taken
+/// to touch both cells beside it, so a checker sampling near the corner, with
+/// its own rounding, cannot land in a cell the traversal did not report.
+const CORNER_EPS: f64 = 1e-9;
 
 /// Whether every cell the segment `a → b` crosses is set in `mask`.
 #[must_use]
@@ -169,5 +175,61 @@ mod tests {
         // A diagonal touching the blocked cell's corner is refused.
         assert!(!segment_clear(&mask, (1.5, 2.5), (2.5, 1.5)));
         assert!(!segment_clear(&mask, (3.5, 2.5), (2.5, 1.5)));
+    }
+
+    /// Every cell a sample of the segment can be assigned to (either side of
+    /// a border it lies on) is reported.
+    fn assert_samples_reported(a: GridPoint, b: GridPoint, size: usize) {
+        let mut seen = std::collections::HashSet::new();
+        traverse(size, size, a, b, |c, _, _| {
+            seen.insert(c);
+            true
+        });
+        let len = (b.0 - a.0).hypot(b.1 - a.1);
+        let n = (len * 4.0).ceil().max(1.0) as usize;
+        let sides = |v: f64| {
+            let f = v.floor() as i64;
+            if v == v.floor() {
+                vec![f - 1, f]
+            } else {
+                vec![f]
+            }
+        };
+        for k in 0..=n {
+            let t = k as f64 / n as f64;
+            let (x, y) = (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1));
+            for cx in sides(x) {
+                for cy in sides(y) {
+                    // Only cells the sample is inside or on the border of.
+                    let inside = (cx as f64) <= x
+                        && x <= cx as f64 + 1.0
+                        && (cy as f64) <= y
+                        && y <= cy as f64 + 1.0;
+                    let cell = (cx >= 0 && cy >= 0 && (cx as usize) < size && (cy as usize) < size)
+                        .then(|| Cell::new(cy as usize, cx as usize));
+                    assert!(
+                        !inside || seen.contains(&cell),
+                        "{a:?}->{b:?} at {t}: {cell:?}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn corners_met_after_many_steps_are_corners() {
+        // Found on a MovingAI map: the tie at t = 0.5 was lost to rounding
+        // when the border parameters were accumulated.
+        assert_samples_reported((863.5, 492.5), (856.5, 465.5), 1500);
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn every_sample_lies_in_a_reported_cell(
+            ax in 0u32..60, ay in 0u32..60, bx in 0u32..60, by in 0u32..60,
+        ) {
+            let c = |v: u32| f64::from(v) + 0.5;
+            assert_samples_reported((c(ax), c(ay)), (c(bx), c(by)), 60);
+        }
     }
 }
