@@ -1,6 +1,9 @@
 //! oxcover's project tasks (`cargo xtask <task>`), as a library so that tests
 //! can check them (sweep determinism, shard merging).
 //!
+//! - [`acceptance`]: every complete planner on every real map (floor plans at
+//!   0.3 m, unit grids with default radii), judged like `oxcover eval`;
+//!   `docs/acceptance.md`.
 //! - [`bench`](mod@bench): run the criterion benchmarks and write their figures, with the
 //!   reference ratios and cells-touched counts, into `docs/benchmarks.md`.
 //! - [`maps`]: plan and score every real map in `../shared/maps`; `docs/maps.md`.
@@ -12,6 +15,7 @@
 //!   deterministic shards for job arrays, and the merge of shards.
 //! - [`plot`]: the small SVG line charts of the reproduction pages.
 
+pub mod acceptance;
 pub mod bench;
 pub mod maps;
 pub mod plot;
@@ -33,6 +37,60 @@ pub fn root() -> PathBuf {
 pub fn shared_maps() -> Option<PathBuf> {
     let p = root().join("../shared/maps");
     p.is_dir().then_some(p)
+}
+
+/// Files under `dir` (recursively, sorted) with one of the extensions `ext`.
+#[must_use]
+pub fn map_files(dir: &Path, ext: &[&str]) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    collect_files(dir, ext, &mut out);
+    out
+}
+
+fn collect_files(dir: &Path, ext: &[&str], out: &mut Vec<PathBuf>) {
+    let Ok(rd) = std::fs::read_dir(dir) else {
+        return;
+    };
+    let mut entries: Vec<PathBuf> = rd.filter_map(|e| e.ok().map(|e| e.path())).collect();
+    entries.sort();
+    for p in entries {
+        if p.is_dir() {
+            collect_files(&p, ext, out);
+        } else if p
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| ext.contains(&e))
+        {
+            out.push(p);
+        }
+    }
+}
+
+/// The real floor plans of the issue-4 experiments: every ROS map of
+/// `../shared/maps/ros` (with its yaml) and every plan of
+/// `../shared/maps/ipa-floorplans` (images at 0.05 m/px, contract
+/// thresholds), named by their path under `../shared/maps`.
+///
+/// # Errors
+/// When `../shared/maps` is missing or a map cannot be read.
+pub fn floor_plans() -> anyhow::Result<Vec<(String, oxcover_grid::OccupancyGrid)>> {
+    use oxcover_grid::io::{ReadOptions, read_map};
+    let Some(root) = shared_maps() else {
+        anyhow::bail!("../shared/maps not found next to the workspace");
+    };
+    let name = |p: &Path| p.strip_prefix(&root).unwrap_or(p).display().to_string();
+    let mut out = Vec::new();
+    for p in map_files(&root.join("ros"), &["yaml"]) {
+        out.push((name(&p), read_map(&p, &ReadOptions::default())?));
+    }
+    let opts = ReadOptions {
+        resolution: 0.05,
+        ..ReadOptions::default()
+    };
+    for p in map_files(&root.join("ipa-floorplans"), &["png", "pgm"]) {
+        out.push((name(&p), read_map(&p, &opts)?));
+    }
+    Ok(out)
 }
 
 /// The first cell (row-major) of the largest region of cells admissible for

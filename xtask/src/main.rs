@@ -30,6 +30,15 @@ enum Task {
         #[arg(long)]
         filter: Option<String>,
     },
+    /// Every complete planner on every real map; write docs/acceptance.md.
+    Acceptance {
+        /// Only maps whose path contains this text.
+        #[arg(long)]
+        filter: Option<String>,
+        /// Only these planners (comma-separated).
+        #[arg(long)]
+        planners: Option<String>,
+    },
     /// Reproduce a paper's experiment: siamantas2010 or zhang2008.
     Reproduce {
         /// Experiment name.
@@ -82,6 +91,9 @@ fn main() -> anyhow::Result<()> {
     match Cli::parse().task {
         Task::Bench { no_run, only } => xtask::bench::run(no_run, only.as_deref()),
         Task::Maps { filter } => xtask::maps::run(filter.as_deref()),
+        Task::Acceptance { filter, planners } => {
+            xtask::acceptance::run(filter.as_deref(), planners.as_deref())
+        }
         Task::Reproduce { name } => xtask::reproduce::run(&name),
         Task::Sweep {
             planners,

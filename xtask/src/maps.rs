@@ -18,15 +18,16 @@ use rayon::prelude::*;
 /// A map, a setting name, and optional (robot, tool) radii.
 type Job = (PathBuf, &'static str, Option<(f64, f64)>);
 
-/// Scores of one plan.
-struct Scores {
-    coverable: usize,
-    raw: f64,
-    coverage: f64,
-    collisions: usize,
-    length_m: f64,
-    turns: usize,
-    plan_ms: f64,
+/// Scores of one plan, as `oxcover eval` gives them for the written path file.
+pub(crate) struct Scores {
+    pub(crate) coverable: usize,
+    /// Coverage before the boundary pass.
+    pub(crate) raw: f64,
+    pub(crate) coverage: f64,
+    pub(crate) collisions: usize,
+    pub(crate) length_m: f64,
+    pub(crate) turns: usize,
+    pub(crate) plan_ms: f64,
 }
 
 struct Row {
@@ -40,27 +41,11 @@ struct Row {
     largest: Scores,
 }
 
-fn files(dir: &Path, ext: &[&str], out: &mut Vec<PathBuf>) {
-    let Ok(rd) = std::fs::read_dir(dir) else {
-        return;
-    };
-    let mut entries: Vec<PathBuf> = rd.filter_map(|e| e.ok().map(|e| e.path())).collect();
-    entries.sort();
-    for p in entries {
-        if p.is_dir() {
-            files(&p, ext, out);
-        } else if p
-            .extension()
-            .and_then(|e| e.to_str())
-            .is_some_and(|e| ext.contains(&e))
-        {
-            out.push(p);
-        }
-    }
-}
-
-fn plan_and_score(
+/// Plans with `planner` (and the boundary pass), writes the path file to
+/// `csv`, reads it back and scores it.
+pub(crate) fn plan_and_score(
     map: &OccupancyGrid,
+    planner: &str,
     robot: DiscRobot,
     start: Option<Point>,
     csv: &Path,
@@ -68,7 +53,7 @@ fn plan_and_score(
     let request = PlanRequest {
         robot,
         start,
-        ..PlanRequest::new("dtc", map.resolution())
+        ..PlanRequest::new(planner, map.resolution())
     };
     let out = plan(map, &request)?;
     // Score the written file, as `oxcover eval` would.
@@ -104,13 +89,24 @@ fn check(
     let dir = crate::root().join("target/xtask/maps");
     std::fs::create_dir_all(&dir)?;
     let stem = format!("{}-{setting}", rel.replace(['/', '.'], "_"));
-    let default_start =
-        plan_and_score(&map, robot, None, &dir.join(format!("{stem}-default.csv")))?;
+    let default_start = plan_and_score(
+        &map,
+        "dtc",
+        robot,
+        None,
+        &dir.join(format!("{stem}-default.csv")),
+    )?;
     // The first admissible cell of the largest admissible region.
     let cell =
         crate::largest_region_start(&map, robot.robot_radius).context("no admissible cell")?;
     let start = Some(map.frame().cell_center(cell));
-    let largest = plan_and_score(&map, robot, start, &dir.join(format!("{stem}-largest.csv")))?;
+    let largest = plan_and_score(
+        &map,
+        "dtc",
+        robot,
+        start,
+        &dir.join(format!("{stem}-largest.csv")),
+    )?;
     Ok(Row {
         map: rel,
         setting,
@@ -129,9 +125,8 @@ pub fn run(filter: Option<&str>) -> anyhow::Result<()> {
     let Some(root) = crate::shared_maps() else {
         anyhow::bail!("../shared/maps not found next to the workspace");
     };
-    let mut maps = Vec::new();
-    files(&root.join("ros"), &["yaml"], &mut maps);
-    files(&root.join("movingai"), &["map"], &mut maps);
+    let mut maps = crate::map_files(&root.join("ros"), &["yaml"]);
+    maps.extend(crate::map_files(&root.join("movingai"), &["map"]));
     maps.retain(|p| filter.is_none_or(|f| p.display().to_string().contains(f)));
     let mut jobs: Vec<Job> = Vec::new();
     for m in &maps {

@@ -88,6 +88,10 @@ struct PlanArgs {
     /// Append a pass along obstacle boundaries covering what the planner missed.
     #[arg(long, value_enum, value_name = "on|off", default_value_t = OnOff::On)]
     boundary_pass: OnOff,
+    /// Sweep angle in degrees for boustrophedon and trapezoidal (lanes along it,
+    /// counter-clockwise from the map's x axis) [default: best of 0, 15, ..., 165].
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    sweep_angle: Option<f64>,
     /// Path file to write (CSV, header x,y).
     #[arg(long, value_name = "PATH.csv")]
     out: Option<PathBuf>,
@@ -244,6 +248,7 @@ fn cmd_plan(a: &PlanArgs) -> Result<()> {
         start: a.start,
         seed: a.seed,
         boundary_pass: a.boundary_pass == OnOff::On,
+        sweep_angle_deg: a.sweep_angle,
     };
     let outcome = plan(&map, &request)?;
     let name = a.map.display().to_string();
@@ -377,6 +382,7 @@ pub(crate) fn write_plan_outputs(
             start: [start.x, start.y],
             seed: request.seed,
             boundary_pass: request.boundary_pass,
+            sweep_angle_deg: request.sweep_angle_deg,
             coverage_cell_m: outcome.coarse_block as f64 * map.resolution(),
         };
         let report = PlanReport::new(&request.planner, params, outcome);

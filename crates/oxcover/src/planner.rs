@@ -14,6 +14,7 @@ use oxcover_distance::{Wavefront, cidt};
 use oxcover_grid::{
     Cell, CoarseGrid, Coverability, DiscRobot, OccupancyGrid, Point, TOLERANCE_CELLS,
 };
+use oxcover_planners::sweep::{Decomposition, Sweep};
 use oxcover_planners::{
     BoundaryRoute, PlanOutput, Planner, PlannerInput, boundary_pass, expand, registry,
 };
@@ -79,6 +80,9 @@ pub struct PlanRequest {
     pub seed: u64,
     /// Append the boundary pass. Default on.
     pub boundary_pass: bool,
+    /// Fixed sweep angle in degrees for `boustrophedon` and `trapezoidal`
+    /// (lanes along it, map frame); `None` = the best of their 12 angles.
+    pub sweep_angle_deg: Option<f64>,
 }
 
 impl PlanRequest {
@@ -91,6 +95,7 @@ impl PlanRequest {
             start: None,
             seed: 0,
             boundary_pass: true,
+            sweep_angle_deg: None,
         }
     }
 }
@@ -132,7 +137,22 @@ pub fn coarse_block(robot: &DiscRobot, resolution: f64) -> usize {
 /// Unknown planner, bad radii or start ([`oxcover_grid::Error`]), a planner's
 /// refusal ([`oxcover_planners::Error::TooLarge`]) or an internal fault.
 pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
-    plan_with(map, find_planner(&request.planner)?, request)
+    let planner = find_planner(&request.planner)?;
+    let Some(angle) = request.sweep_angle_deg else {
+        return plan_with(map, planner, request);
+    };
+    let decomposition = match planner.name() {
+        "boustrophedon" => Decomposition::Boustrophedon,
+        "trapezoidal" => Decomposition::Trapezoidal,
+        other => {
+            return Err(Error::Argument {
+                name: "--sweep-angle",
+                value: format!("{angle} (with --planner {other})"),
+                expected: "a sweep angle only with --planner boustrophedon or trapezoidal".into(),
+            });
+        }
+    };
+    plan_with(map, &Sweep::new(decomposition).at_angle(angle), request)
 }
 
 /// Plans with a given planner (registered or not); `request.planner` is ignored.

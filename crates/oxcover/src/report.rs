@@ -26,6 +26,9 @@ pub struct PlanParameters {
     pub seed: u64,
     /// Whether the boundary pass ran.
     pub boundary_pass: bool,
+    /// The fixed sweep angle in degrees, when one was asked for.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sweep_angle_deg: Option<f64>,
     /// Side of a coverage cell in metres (one tool diameter, at least one map cell).
     pub coverage_cell_m: f64,
 }

@@ -198,6 +198,32 @@ fn bad_inputs_exit_2_with_one_line() {
             "--tool-radius is 0",
         ),
         (
+            vec!["plan", &good_yaml, "--planner", "dtc", "--sweep-angle", "30"],
+            "only with --planner boustrophedon or trapezoidal",
+        ),
+        (
+            vec![
+                "plan",
+                &good_yaml,
+                "--planner",
+                "boustrophedon",
+                "--sweep-angle",
+                "NaN",
+            ],
+            "sweep angle is `NaN`, expected a finite angle",
+        ),
+        (
+            vec![
+                "plan",
+                &good_yaml,
+                "--planner",
+                "trapezoidal",
+                "--sweep-angle",
+                "abc",
+            ],
+            "abc",
+        ),
+        (
             vec![
                 "plan",
                 &good_yaml,

@@ -197,3 +197,39 @@ fn info_planners_and_demo() {
     assert_eq!(report["coverage"], 1.0);
     assert_eq!(report["collisions"], 0);
 }
+
+#[test]
+fn a_fixed_sweep_angle_is_honoured_and_reported() {
+    let dir = scratch("angle");
+    let map = fixture("turtlebot_simulator/simple_rooms.yaml");
+    let mut paths = Vec::new();
+    for angle in ["0", "90"] {
+        let csv = dir.join(format!("a{angle}.csv")).display().to_string();
+        let report = dir.join(format!("a{angle}.json")).display().to_string();
+        run(&[
+            "plan",
+            &map,
+            "--planner",
+            "boustrophedon",
+            "--robot-radius",
+            "0.15",
+            "--tool-radius",
+            "0.15",
+            "--sweep-angle",
+            angle,
+            "--out",
+            &csv,
+            "--report",
+            &report,
+        ]);
+        let r = json(&std::fs::read_to_string(&report).expect("read report"));
+        assert_eq!(
+            r["parameters"]["sweep_angle_deg"].as_f64(),
+            angle.parse().ok()
+        );
+        assert_eq!(r["collisions"], 0);
+        assert_eq!(r["coverage"], 1.0);
+        paths.push(std::fs::read_to_string(&csv).expect("read path"));
+    }
+    assert_ne!(paths[0], paths[1], "0° and 90° lanes give the same path");
+}

@@ -9,12 +9,10 @@
 //! region (its first cell, row-major).
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
 
 use oxcover::planner::{PlanOutcome, PlanRequest, plan_with};
 use oxcover::render::{Scene, render_to_file};
 use oxcover::report::metric_rows;
-use oxcover_grid::io::{ReadOptions, read_map};
 use oxcover_grid::rotate::rotate;
 use oxcover_grid::{DiscRobot, OccupancyGrid, Point};
 use oxcover_planners::border_expansion::BorderExpansionPlanner;
@@ -25,48 +23,6 @@ use rayon::prelude::*;
 use super::dir;
 
 const RADIUS: f64 = 0.3;
-
-fn maps() -> anyhow::Result<Vec<(String, OccupancyGrid)>> {
-    let Some(root) = crate::shared_maps() else {
-        anyhow::bail!("../shared/maps not found next to the workspace");
-    };
-    let mut paths: Vec<PathBuf> = Vec::new();
-    collect(&root.join("ros"), "yaml", &mut paths);
-    let mut ipa: Vec<PathBuf> = Vec::new();
-    collect(&root.join("ipa-floorplans"), "png", &mut ipa);
-    collect(&root.join("ipa-floorplans"), "pgm", &mut ipa);
-    let mut out = Vec::new();
-    for p in paths {
-        out.push((name(&p, &root), read_map(&p, &ReadOptions::default())?));
-    }
-    let opts = ReadOptions {
-        resolution: 0.05,
-        ..ReadOptions::default()
-    };
-    for p in ipa {
-        out.push((name(&p, &root), read_map(&p, &opts)?));
-    }
-    Ok(out)
-}
-
-fn name(p: &Path, root: &Path) -> String {
-    p.strip_prefix(root).unwrap_or(p).display().to_string()
-}
-
-fn collect(dir: &Path, ext: &str, out: &mut Vec<PathBuf>) {
-    let Ok(rd) = std::fs::read_dir(dir) else {
-        return;
-    };
-    let mut v: Vec<PathBuf> = rd.filter_map(|e| e.ok().map(|e| e.path())).collect();
-    v.sort();
-    for p in v {
-        if p.is_dir() {
-            collect(&p, ext, out);
-        } else if p.extension().is_some_and(|e| e == ext) {
-            out.push(p);
-        }
-    }
-}
 
 /// The first cell of the largest admissible region, in metres.
 fn start(map: &OccupancyGrid) -> Option<Point> {
@@ -128,7 +84,7 @@ fn structure(map: &OccupancyGrid, method: &str) -> anyhow::Result<(usize, f64)> 
 /// # Errors
 /// Missing maps, failing plans, file writes.
 pub fn run() -> anyhow::Result<()> {
-    let maps = maps()?;
+    let maps = crate::floor_plans()?;
     let out = dir()?;
     let mut md = String::from(
         "# Pavlicek et al. 2002 (seed 004): boustrophedon vs border expansion\n\nCommand: `cargo xtask reproduce pavlicek2002` (release). Maps: every ROS map of `../shared/maps/ros` and every floor plan of `../shared/maps/ipa-floorplans` (0.05 m/px, contract thresholds); robot and tool radius 0.3 m; start at the first cell of the largest admissible region. `raw` is the planner's own coverage before the boundary pass; `final` includes it. Cells = decomposition cells at the chosen sweep angle; roads = border-expansion roads (levels in brackets).\n\n",
@@ -270,7 +226,7 @@ pub fn run() -> anyhow::Result<()> {
 /// # Errors
 /// Missing maps, file writes.
 pub fn run_floorplans() -> anyhow::Result<()> {
-    let maps = maps()?;
+    let maps = crate::floor_plans()?;
     let ipa: Vec<&(String, OccupancyGrid)> =
         maps.iter().filter(|(n, _)| n.starts_with("ipa")).collect();
     let out = dir()?;
