@@ -198,7 +198,14 @@ fn bad_inputs_exit_2_with_one_line() {
             "--tool-radius is 0",
         ),
         (
-            vec!["plan", &good_yaml, "--planner", "dtc", "--sweep-angle", "30"],
+            vec![
+                "plan",
+                &good_yaml,
+                "--planner",
+                "dtc",
+                "--sweep-angle",
+                "30",
+            ],
             "only with --planner boustrophedon or trapezoidal",
         ),
         (

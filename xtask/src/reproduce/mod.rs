@@ -2,6 +2,7 @@
 //! `docs/reproduction/<name>.md` (tables with the paper's figures beside ours,
 //! an SVG figure, the exact command, and a discussion of differences).
 
+mod decomposition_figure;
 pub mod pavlicek2002;
 pub mod siamantas2010;
 pub mod zhang2008;

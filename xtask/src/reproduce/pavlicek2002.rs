@@ -79,6 +79,29 @@ fn structure(map: &OccupancyGrid, method: &str) -> anyhow::Result<(usize, f64)> 
     })
 }
 
+/// Draws the Fig. 8-style picture for `map`; returns the counts shown:
+/// trapezoidal cells, boustrophedon cells, adjacency edges, roads, levels.
+fn decomposition_figure(
+    map: &OccupancyGrid,
+    out: &std::path::Path,
+) -> anyhow::Result<(usize, usize, usize, usize, usize)> {
+    let robot = DiscRobot::new(RADIUS, RADIUS)?;
+    let problem = oxcover_grid::Coverability::new(map, robot, start(map))?;
+    let k = oxcover::planner::coarse_block(&robot, map.resolution()) as f64;
+    let plannable = &problem.reachable;
+    let trap = Sweep::new(Decomposition::Trapezoidal).decompose(plannable, 0.0, k);
+    let bous = Sweep::new(Decomposition::Boustrophedon).decompose(plannable, 0.0, k);
+    let roads = oxcover_decomp::border_expansion(plannable, k);
+    super::decomposition_figure::write(out, plannable, &map.free_mask(), &trap, &bous, &roads, 1)?;
+    Ok((
+        trap.cells.len(),
+        bous.cells.len(),
+        bous.edges.len(),
+        roads.roads.len(),
+        roads.levels,
+    ))
+}
+
 /// Runs `pavlicek2002`.
 ///
 /// # Errors
@@ -198,6 +221,13 @@ pub fn run() -> anyhow::Result<()> {
     // Figure: the three methods on one plan.
     if let Some((name, map)) = maps.iter().find(|(n, _)| n.ends_with("lab_c.png")) {
         md += "\n## Figures\n\n";
+        let file = "pavlicek2002_fig8.png";
+        let counts = decomposition_figure(map, &out.join(file))?;
+        let _ = writeln!(
+            md,
+            "Seed 004's Fig. 8 on {name}, lanes at 0° (horizontal), one coverage cell (12 px) apart: (a, top left) trapezoidal decomposition, {} cells; (b, top right) boustrophedon decomposition, {} cells; (c, bottom left) the boustrophedon adjacency graph, {} edges; (d, bottom right) the border-expansion roads, {} roads on {} safety levels, blue at the walls to red at the centre. Dark grey: walls and unknown; light grey: free but not reachable by the robot disc.\n\n![Fig. 8 on {name}]({file})\n",
+            counts.0, counts.1, counts.2, counts.3, counts.4
+        );
         for (m, p) in methods(false) {
             let o = run_plan(map, p.as_ref())?;
             let file = format!("pavlicek2002_{m}.png");
