@@ -59,10 +59,10 @@ fn cells_panel(d: &SliceDecomposition, plannable: &Grid<bool>, free: &Grid<bool>
                 let mut o = -s / 2.0;
                 while o < s / 2.0 {
                     let q = (p.0 + o * normal.0, p.1 + o * normal.1);
-                    if let Some(c) = oxcover_grid::traverse::cell_of(plannable, q) {
-                        if plannable[c] {
-                            px[c] = colour;
-                        }
+                    if let Some(c) = oxcover_grid::traverse::cell_of(plannable, q)
+                        && plannable[c]
+                    {
+                        px[c] = colour;
                     }
                     o += 0.5;
                 }
