@@ -129,6 +129,15 @@ fn floorplan_section(root: &Path) -> anyhow::Result<()> {
             if mean < 200e6 { "yes" } else { "**no**" }
         );
     }
+    md += "\nParts of border expansion, same run: the exact distance transform of the plannable mask, and the whole road construction (transform, ranks, union-find, loops, road graph) without the walk.\n\n| part | mean ms | sd ms |\n|---|---:|---:|\n";
+    for (dir, name) in [
+        ("parts_edt", "distance transform"),
+        ("parts_border-expansion-roads", "roads"),
+    ] {
+        if let Ok((mean, sd)) = estimate_ns(&group.join(dir)) {
+            md += &format!("| {name} | {:.2} | {:.2} |\n", mean / 1e6, sd / 1e6);
+        }
+    }
     crate::replace_section(&root.join("docs/benchmarks.md"), "floorplan", &md)?;
     Ok(())
 }

@@ -12,8 +12,8 @@
 //! Overlapping growth needs no special handling: where two borders meet, the
 //! level set simply merges into one road, as the paper's "composite road".
 //!
-//! The **adjacency graph** joins the roads of one component (an outer road and
-//! the roads around its holes) and each road of level `j + 1` to the nearest
+//! The **adjacency graph** joins the roads of one component (each hole's road
+//! to the outer road) and each road of level `j + 1` to the nearest
 //! road of level `j` (by a labelled wavefront inside `S_j`). The outer road of
 //! level 0 is the paper's road A₁, where the walk starts. The method depends
 //! on distances only, so it does not change when the map is rotated.
@@ -56,7 +56,9 @@ pub struct BorderExpansion {
     pub roads: Vec<Road>,
     /// Regions per level, by level.
     pub components: Vec<Component>,
-    /// Road adjacency graph: pairs `(a, b)`, `a < b`.
+    /// Road adjacency graph: pairs `(a, b)`, `a < b`: each hole road to its
+    /// component's outer road, each road above level 0 to the nearest road
+    /// of the level below.
     pub edges: Vec<(usize, usize)>,
     /// Number of safety levels with at least one road.
     pub levels: usize,
@@ -225,11 +227,13 @@ fn assemble(levels: Vec<Level>) -> BorderExpansion {
             }
         }
     }
-    // Roads of one component are adjacent to each other.
+    // Roads of one component bound the same region: each hole road is joined
+    // to the outer road (a star; a clique would be quadratic in the holes,
+    // tens of millions of edges on a cluttered map).
     for comp in &out.components {
-        for (i, &a) in comp.roads.iter().enumerate() {
-            for &b in &comp.roads[i + 1..] {
-                out.edges.push((a.min(b), a.max(b)));
+        if let Some((&outer, holes)) = comp.roads.split_first() {
+            for &b in holes {
+                out.edges.push((outer.min(b), outer.max(b)));
             }
         }
     }

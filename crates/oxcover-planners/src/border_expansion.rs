@@ -54,18 +54,33 @@ impl BorderExpansionPlanner {
             .ok_or_else(|| Error::Internal("start coverage cell has no representative".into()))?;
         let spacing = input.coarse.block_size() as f64;
         let roads = border_expansion(input.plannable, spacing);
-        let mut path = PathBuilder::new(input.plannable, start);
-        let mut order = Vec::new();
-        // Roots: level-0 regions (one when the plannable set is connected).
-        let mut roots: Vec<usize> = (0..roads.components.len())
-            .filter(|&c| roads.components[c].level == 0)
-            .collect();
-        while !roots.is_empty() {
-            let here = path.last();
-            let k = nearest_index(&roots, |c| region_distance(&roads, c, here));
-            let root = roots.swap_remove(k);
-            walk_region(&roads, root, &mut path, &mut order)?;
+        let mut walk = Walk {
+            roads: &roads,
+            index: RoadIndex::new(&roads, input.plannable.width(), input.plannable.height()),
+            driven: vec![false; roads.roads.len()],
+            wanted_by: vec![None; roads.components.len()],
+            path: PathBuilder::new(input.plannable, start),
+            order: Vec::new(),
+        };
+        // Roots: level-0 regions (one when the plannable set is connected),
+        // nearest first. `usize::MAX` stands for "no parent".
+        let mut roots = 0;
+        for (c, comp) in roads.components.iter().enumerate() {
+            if comp.level == 0 {
+                walk.wanted_by[c] = Some(usize::MAX);
+                roots += 1;
+            }
         }
+        for _ in 0..roots {
+            let Some(root) = walk.nearest_wanted(usize::MAX) else {
+                break;
+            };
+            walk.wanted_by[root] = None;
+            walk.region(root)?;
+        }
+        let Walk {
+            mut path, order, ..
+        } = walk;
         path.cover_leftovers(input.coarse)?;
         Ok(BorderPlan {
             roads,
@@ -90,37 +105,131 @@ impl Planner for BorderExpansionPlanner {
     }
 }
 
-/// Drives the roads of `region` (outer road first), then its inner regions.
-fn walk_region(
-    roads: &BorderExpansion,
-    region: usize,
-    path: &mut PathBuilder<'_>,
-    order: &mut Vec<usize>,
-) -> Result<()> {
-    let comp = &roads.components[region];
-    let mut todo = comp.roads.clone();
-    let mut first = true;
-    while !todo.is_empty() {
-        let here = path.last();
-        // The outer road opens a region (A₁ for the first); then nearest first.
-        let k = if first {
-            0
-        } else {
-            nearest_index(&todo, |r| road_distance(&roads.roads[r].cells, here).0)
-        };
-        first = false;
-        let r = todo.remove(k);
-        drive_road(&roads.roads[r].cells, path)?;
-        order.push(r);
+/// The walk over the road graph.
+struct Walk<'r, 'p> {
+    roads: &'r BorderExpansion,
+    index: RoadIndex,
+    /// Roads already driven.
+    driven: Vec<bool>,
+    /// Per component: the region whose walk is about to enter it.
+    wanted_by: Vec<Option<usize>>,
+    path: PathBuilder<'p>,
+    order: Vec<usize>,
+}
+
+impl Walk<'_, '_> {
+    /// Drives the roads of `region` (outer road first, then nearest first),
+    /// then its inner regions, nearest first.
+    fn region(&mut self, region: usize) -> Result<()> {
+        let comp = &self.roads.components[region];
+        if let Some(&outer) = comp.roads.first() {
+            self.drive(outer)?;
+        }
+        let roads = self.roads;
+        // Exactly as many queries as there are roads and children left, so
+        // no search ever runs over the whole map to find nothing.
+        for _ in 1..comp.roads.len() {
+            let here = self.path.last();
+            let driven = &self.driven;
+            let Some((r, _)) = self
+                .index
+                .nearest(here, |r| !driven[r] && roads.roads[r].component == region)
+            else {
+                break;
+            };
+            self.drive(r)?;
+        }
+        for &child in &comp.children {
+            self.wanted_by[child] = Some(region);
+        }
+        for _ in 0..comp.children.len() {
+            let Some(child) = self.nearest_wanted(region) else {
+                break;
+            };
+            self.wanted_by[child] = None;
+            self.region(child)?;
+        }
+        Ok(())
     }
-    let mut children = comp.children.clone();
-    while !children.is_empty() {
-        let here = path.last();
-        let k = nearest_index(&children, |c| region_distance(roads, c, here));
-        let child = children.swap_remove(k);
-        walk_region(roads, child, path, order)?;
+
+    /// The component wanted by `parent` with a road nearest the robot.
+    fn nearest_wanted(&mut self, parent: usize) -> Option<usize> {
+        let (roads, wanted) = (self.roads, &self.wanted_by);
+        self.index
+            .nearest(self.path.last(), |r| {
+                wanted[roads.roads[r].component] == Some(parent)
+            })
+            .map(|(r, _)| roads.roads[r].component)
     }
-    Ok(())
+
+    fn drive(&mut self, r: usize) -> Result<()> {
+        self.driven[r] = true;
+        self.order.push(r);
+        drive_road(&self.roads.roads[r].cells, &mut self.path)
+    }
+}
+
+/// Road cells bucketed by square blocks of the grid, for nearest-road
+/// queries that look only near the robot (a scan over every road at every
+/// step is quadratic on cluttered maps with thousands of roads).
+struct RoadIndex {
+    block: usize,
+    bw: usize,
+    bh: usize,
+    /// Per block: (road, cell centre).
+    buckets: Vec<Vec<(usize, GridPoint)>>,
+}
+
+impl RoadIndex {
+    const BLOCK: usize = 16;
+
+    fn new(roads: &BorderExpansion, width: usize, height: usize) -> Self {
+        let block = Self::BLOCK;
+        let (bw, bh) = (width.div_ceil(block).max(1), height.div_ceil(block).max(1));
+        let mut buckets = vec![Vec::new(); bw * bh];
+        for (r, road) in roads.roads.iter().enumerate() {
+            for &c in &road.cells {
+                buckets[(c.row / block) * bw + c.col / block].push((r, cell_center(c)));
+            }
+        }
+        Self {
+            block,
+            bw,
+            bh,
+            buckets,
+        }
+    }
+
+    /// The road accepted by `keep` with a cell nearest to `p` (Euclidean;
+    /// ties to the lower road index), and that distance.
+    fn nearest(&self, p: GridPoint, keep: impl Fn(usize) -> bool) -> Option<(usize, f64)> {
+        let k = self.block as f64;
+        let bx = ((p.0 / k).floor().max(0.0) as usize).min(self.bw - 1);
+        let by = ((p.1 / k).floor().max(0.0) as usize).min(self.bh - 1);
+        let mut best: Option<(f64, usize)> = None;
+        for ring in 0..self.bw.max(self.bh) {
+            // Every cell of a farther ring is at least `ring · block` away.
+            if best.is_some_and(|(d, _)| d <= ring.saturating_sub(1) as f64 * k) {
+                break;
+            }
+            let (x0, x1) = (bx.saturating_sub(ring), (bx + ring).min(self.bw - 1));
+            let (y0, y1) = (by.saturating_sub(ring), (by + ring).min(self.bh - 1));
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    if x.abs_diff(bx).max(y.abs_diff(by)) != ring {
+                        continue;
+                    }
+                    for &(r, q) in &self.buckets[y * self.bw + x] {
+                        let d = (q.0 - p.0).hypot(q.1 - p.1);
+                        if best.is_none_or(|b| (d, r) < b) && keep(r) {
+                            best = Some((d, r));
+                        }
+                    }
+                }
+            }
+        }
+        best.map(|(d, r)| (r, d))
+    }
 }
 
 /// Enters the loop at its cell nearest the robot and drives once around.
@@ -136,17 +245,6 @@ fn drive_road(cells: &[Cell], path: &mut PathBuilder<'_>) -> Result<()> {
     Ok(())
 }
 
-fn nearest_index(items: &[usize], mut key: impl FnMut(usize) -> f64) -> usize {
-    let mut best = (f64::INFINITY, 0);
-    for (k, &it) in items.iter().enumerate() {
-        let d = key(it);
-        if d < best.0 {
-            best = (d, k);
-        }
-    }
-    best.1
-}
-
 fn road_distance(cells: &[Cell], p: GridPoint) -> (f64, usize) {
     let mut best = (f64::INFINITY, 0);
     for (i, &c) in cells.iter().enumerate() {
@@ -157,14 +255,6 @@ fn road_distance(cells: &[Cell], p: GridPoint) -> (f64, usize) {
         }
     }
     best
-}
-
-fn region_distance(roads: &BorderExpansion, region: usize, p: GridPoint) -> f64 {
-    roads.components[region]
-        .roads
-        .iter()
-        .map(|&r| road_distance(&roads.roads[r].cells, p).0)
-        .fold(f64::INFINITY, f64::min)
 }
 
 #[cfg(test)]

@@ -4,7 +4,7 @@
 //! Points are in grid coordinates ([`oxcover_grid::traverse`]). A straight
 //! piece is added only when exact traversal finds every cell it crosses
 //! plannable; otherwise the builder routes over the fine grid (a shortest
-//! 4-connected path by CIDT) and straightens that route by string pulling,
+//! 4-connected path by A*) and straightens that route by string pulling,
 //! each shortcut again checked by traversal. So no segment ever crosses a wall,
 //! which is the usual failure of sweep planners that join cells by straight lines.
 //!

@@ -34,7 +34,9 @@ pub const ANGLES_DEG: [f64; 12] = [
     0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0, 105.0, 120.0, 135.0, 150.0, 165.0,
 ];
 
-/// Largest cell count for which the order is improved by 2-opt.
+/// Largest cell count for which the order comes from all-pairs graph
+/// distances improved by 2-opt; above it, a local greedy over the graph
+/// (cluttered maps reach tens of thousands of cells).
 const TWO_OPT_MAX_CELLS: usize = 1500;
 
 /// Which decomposition.
@@ -261,6 +263,12 @@ fn order_cells(d: &SliceDecomposition, start: GridPoint, refine: bool) -> (Vec<u
         .unwrap_or(0);
     let lanes: usize = d.cells.iter().map(Vec::len).sum();
     let base = d.lane_length() + lanes as f64 * d.slices.spacing();
+    if n > TWO_OPT_MAX_CELLS {
+        // Many cells (cluttered maps): no all-pairs matrix (n² memory) and no
+        // quadratic scans; greedy by graph distance, found locally.
+        let (order, cost) = greedy_over_graph(d, &centroids, first);
+        return (order, base + cost);
+    }
     if !refine {
         // Greedy over Euclidean centroid distances: cheap, for angle choice.
         let mut left: Vec<bool> = vec![true; n];
@@ -301,6 +309,78 @@ fn order_cells(d: &SliceDecomposition, start: GridPoint, refine: bool) -> (Vec<u
     }
     let cost = order.windows(2).map(|w| at(w[0], w[1])).sum::<f64>();
     (order, base + cost)
+}
+
+/// Greedy nearest-unvisited order by adjacency-graph distance, each step a
+/// Dijkstra search from the current cell that stops at the first unvisited
+/// cell (so its cost is local); when none is linked, the Euclidean nearest
+/// with the same penalty as [`graph_distances`]. Returns the order and its
+/// travel estimate.
+fn greedy_over_graph(
+    d: &SliceDecomposition,
+    centroids: &[GridPoint],
+    first: usize,
+) -> (Vec<usize>, f64) {
+    use std::cmp::Reverse;
+    use std::collections::BinaryHeap;
+    let n = centroids.len();
+    let adj = d.neighbours();
+    let key = |x: f64| (x * 1024.0) as u64;
+    let mut left = vec![true; n];
+    let mut best = vec![f64::INFINITY; n];
+    let mut touched = Vec::new();
+    let mut heap = BinaryHeap::new();
+    let (mut cur, mut cost) = (first, 0.0);
+    left[cur] = false;
+    let mut order = vec![cur];
+    for _ in 1..n {
+        for &t in &touched {
+            best[t] = f64::INFINITY;
+        }
+        touched.clear();
+        heap.clear();
+        best[cur] = 0.0;
+        touched.push(cur);
+        heap.push(Reverse((0u64, cur)));
+        let mut found = None;
+        while let Some(Reverse((k, u))) = heap.pop() {
+            if k > key(best[u]) {
+                continue;
+            }
+            if left[u] {
+                found = Some((u, best[u]));
+                break;
+            }
+            for &v in &adj[u] {
+                let nd = best[u] + dist(centroids[u], centroids[v]);
+                if nd < best[v] {
+                    if best[v].is_infinite() {
+                        touched.push(v);
+                    }
+                    best[v] = nd;
+                    heap.push(Reverse((key(nd), v)));
+                }
+            }
+        }
+        let (next, step) = found.unwrap_or_else(|| {
+            let far = (0..n)
+                .filter(|&i| left[i])
+                .min_by(|&a, &b| {
+                    dist2(centroids[cur], centroids[a])
+                        .total_cmp(&dist2(centroids[cur], centroids[b]))
+                })
+                .unwrap_or(cur);
+            (far, 4.0 * dist(centroids[cur], centroids[far]))
+        });
+        if !left[next] {
+            break;
+        }
+        cost += step;
+        left[next] = false;
+        order.push(next);
+        cur = next;
+    }
+    (order, cost)
 }
 
 /// All-pairs shortest distances over the adjacency graph (row-major `n × n`);
