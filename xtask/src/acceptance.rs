@@ -262,7 +262,7 @@ pub fn run(filter: Option<&str>, only: Option<&str>) -> anyhow::Result<()> {
             );
         }
         md += &format!(
-            "\nCoverage of each run (`refused`: the planner's documented size limit; `skipped (n)`: a quadratic planner not run on n coverage cells, see below):\n\n{table}"
+            "\nCoverage of each run (`refused`: the planner's documented size limit; `skipped (n)`: a quadratic planner not run on n coverage cells, see the introduction):\n\n{table}"
         );
     }
     let refusals: Vec<String> = results
