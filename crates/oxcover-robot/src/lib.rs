@@ -1,0 +1,33 @@
+//! # oxcover-robot
+//!
+//! The robot side of coverage (issue 5, first part): how a differential-drive
+//! robot moves and how it tracks a planned path.
+//!
+//! - [`kinematics`]: the unicycle / differential-drive model ([`DiffDrive`]),
+//!   exact integration of constant `(v, ω)` steps along arcs, wheel speeds,
+//!   and saturation of commands by wheel speed and acceleration limits that
+//!   keeps the commanded curvature.
+//! - [`control`]: the [`Controller`] trait, the tracking error in the robot
+//!   frame, and two controllers behind it: [`Kanayama`] (Kanayama et al. 1990)
+//!   and [`Klancar`], the nonlinear controller of Klancar et al. 2005 (seed
+//!   000's Fig. 3c) in its `sinc` form.
+//!
+//! Angles are radians, counter-clockwise from the map's x axis; lengths are
+//! metres; times seconds.
+//!
+//! ```
+//! use oxcover_robot::{DiffDrive, Pose};
+//!
+//! // A quarter circle of radius 1 m at 0.5 m/s.
+//! let robot = DiffDrive::default();
+//! let p = robot.integrate(Pose::new(0.0, 0.0, 0.0), 0.5, 0.5, std::f64::consts::PI);
+//! assert!((p.x - 1.0).abs() < 1e-12 && (p.y - 1.0).abs() < 1e-12);
+//! ```
+
+pub mod control;
+pub mod error;
+pub mod kinematics;
+
+pub use control::{Controller, Kanayama, Klancar, Reference, TrackingError};
+pub use error::{Error, Result};
+pub use kinematics::{DiffDrive, Pose, wrap_angle};
