@@ -11,6 +11,12 @@
 //!   frame, and two controllers behind it: [`Kanayama`] (Kanayama et al. 1990)
 //!   and [`Klancar`], the nonlinear controller of Klancar et al. 2005 (seed
 //!   000's Fig. 3c) in its `sinc` form.
+//! - [`timing`]: time parametrisation of a metre polyline under speed,
+//!   acceleration and turn-rate limits (stops and turns in place at corners,
+//!   curvature-limited speed on smooth curves): the reference to track.
+//! - [`simulate`](mod@simulate): closed-loop tracking of a timed path at a fixed step
+//!   (reference, controller, wheel limits, exact motion), recording the
+//!   executed samples.
 //!
 //! Angles are radians, counter-clockwise from the map's x axis; lengths are
 //! metres; times seconds.
@@ -27,7 +33,11 @@
 pub mod control;
 pub mod error;
 pub mod kinematics;
+pub mod simulate;
+pub mod timing;
 
 pub use control::{Controller, Kanayama, Klancar, Reference, TrackingError};
 pub use error::{Error, Result};
 pub use kinematics::{DiffDrive, Pose, wrap_angle};
+pub use simulate::{Sample, simulate};
+pub use timing::{Limits, Timing};
