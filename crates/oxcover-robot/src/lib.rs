@@ -17,6 +17,10 @@
 //! - [`simulate`](mod@simulate): closed-loop tracking of a timed path at a fixed step
 //!   (reference, controller, wheel limits, exact motion), recording the
 //!   executed samples.
+//! - [`bezier`]: quintic Bézier segments from end points, tangents and second
+//!   derivatives (seed 002, eq. 13) and C² splines through points.
+//! - [`spiral`]: the Archimedean spiral `r = (R/π)|θ|` of seed 002's spiral
+//!   path, turns one tool diameter apart.
 //!
 //! Angles are radians, counter-clockwise from the map's x axis; lengths are
 //! metres; times seconds.
@@ -30,14 +34,18 @@
 //! assert!((p.x - 1.0).abs() < 1e-12 && (p.y - 1.0).abs() < 1e-12);
 //! ```
 
+pub mod bezier;
 pub mod control;
 pub mod error;
 pub mod kinematics;
 pub mod simulate;
+pub mod spiral;
 pub mod timing;
 
+pub use bezier::{QuinticBezier, spline_through};
 pub use control::{Controller, Kanayama, Klancar, Reference, TrackingError};
 pub use error::{Error, Result};
 pub use kinematics::{DiffDrive, Pose, wrap_angle};
 pub use simulate::{Sample, simulate};
+pub use spiral::ArchimedeanSpiral;
 pub use timing::{Limits, Timing};

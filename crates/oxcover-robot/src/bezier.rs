@@ -1,0 +1,243 @@
+//! Quintic Bézier segments and splines (seed 002, eq. 13).
+//!
+//! A segment `Q(u) = Σ_{k=0}^{5} C(5,k) (1−u)^{5−k} u^k P_k`, `u ∈ [0, 1]`,
+//! is built from its end points, end tangents `T` and end second
+//! derivatives `A` by the seed's rules: `P₁ = P₀ + T₀/5`,
+//! `P₄ = P₅ − T₁/5`, `P₂ = A₀/20 + 2P₁ − P₀`, `P₃ = A₁/20 + 2P₄ − P₅`, which
+//! make `Q'(0) = T₀`, `Q'(1) = T₁`, `Q''(0) = A₀`, `Q''(1) = A₁`. A spline of
+//! such segments that share `T` and `A` at its joins is C² continuous.
+
+/// A planar point or vector (m).
+pub type Vec2 = (f64, f64);
+
+fn add(a: Vec2, b: Vec2) -> Vec2 {
+    (a.0 + b.0, a.1 + b.1)
+}
+
+fn sub(a: Vec2, b: Vec2) -> Vec2 {
+    (a.0 - b.0, a.1 - b.1)
+}
+
+fn scale(a: Vec2, k: f64) -> Vec2 {
+    (a.0 * k, a.1 * k)
+}
+
+/// A quintic Bézier segment.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct QuinticBezier {
+    /// Control points `P₀ … P₅`.
+    pub control: [Vec2; 6],
+}
+
+impl QuinticBezier {
+    /// The segment from `p0` to `p1` with end tangents `t0`, `t1` and end
+    /// second derivatives `a0`, `a1` (seed 002's control-point rules).
+    #[must_use]
+    pub fn from_ends(p0: Vec2, p1: Vec2, t0: Vec2, t1: Vec2, a0: Vec2, a1: Vec2) -> Self {
+        let c1 = add(p0, scale(t0, 0.2));
+        let c4 = sub(p1, scale(t1, 0.2));
+        let c2 = add(scale(a0, 1.0 / 20.0), sub(scale(c1, 2.0), p0));
+        let c3 = add(scale(a1, 1.0 / 20.0), sub(scale(c4, 2.0), p1));
+        Self {
+            control: [p0, c1, c2, c3, c4, p1],
+        }
+    }
+
+    /// de Casteljau evaluation of the control polygon `c` at `u`.
+    fn casteljau<const N: usize>(mut c: [Vec2; N], u: f64) -> Vec2 {
+        for level in (1..N).rev() {
+            for k in 0..level {
+                c[k] = add(scale(c[k], 1.0 - u), scale(c[k + 1], u));
+            }
+        }
+        c[0]
+    }
+
+    /// The point at `u ∈ [0, 1]`.
+    #[must_use]
+    pub fn point(&self, u: f64) -> Vec2 {
+        Self::casteljau(self.control, u)
+    }
+
+    /// `Q'(u)`.
+    #[must_use]
+    pub fn derivative(&self, u: f64) -> Vec2 {
+        let c = &self.control;
+        let d: [Vec2; 5] = std::array::from_fn(|k| scale(sub(c[k + 1], c[k]), 5.0));
+        Self::casteljau(d, u)
+    }
+
+    /// `Q''(u)`.
+    #[must_use]
+    pub fn second_derivative(&self, u: f64) -> Vec2 {
+        let c = &self.control;
+        let d: [Vec2; 4] =
+            std::array::from_fn(|k| scale(add(sub(c[k + 2], scale(c[k + 1], 2.0)), c[k]), 20.0));
+        Self::casteljau(d, u)
+    }
+
+    /// Signed curvature at `u` (1/m; positive turning left), 0 where the
+    /// curve is stationary.
+    #[must_use]
+    pub fn curvature(&self, u: f64) -> f64 {
+        let (d, dd) = (self.derivative(u), self.second_derivative(u));
+        let speed = d.0.hypot(d.1);
+        if speed < 1e-12 {
+            0.0
+        } else {
+            (d.0 * dd.1 - d.1 * dd.0) / speed.powi(3)
+        }
+    }
+
+    /// `n + 1` points at equal steps of `u`.
+    #[must_use]
+    pub fn sample(&self, n: usize) -> Vec<Vec2> {
+        let n = n.max(1);
+        (0..=n).map(|k| self.point(k as f64 / n as f64)).collect()
+    }
+
+    /// Arc length, by Gauss–Legendre quadrature (5 points) on 16 pieces.
+    #[must_use]
+    pub fn length(&self) -> f64 {
+        const X: [f64; 5] = [
+            0.0,
+            -0.538_469_310_105_683,
+            0.538_469_310_105_683,
+            -0.906_179_845_938_664,
+            0.906_179_845_938_664,
+        ];
+        const W: [f64; 5] = [
+            0.568_888_888_888_889,
+            0.478_628_670_499_366,
+            0.478_628_670_499_366,
+            0.236_926_885_056_189,
+            0.236_926_885_056_189,
+        ];
+        let pieces = 16;
+        let h = 1.0 / f64::from(pieces);
+        (0..pieces)
+            .map(|i| {
+                let mid = (f64::from(i) + 0.5) * h;
+                X.iter()
+                    .zip(W)
+                    .map(|(&x, w)| {
+                        let d = self.derivative(mid + x * h / 2.0);
+                        w * d.0.hypot(d.1)
+                    })
+                    .sum::<f64>()
+                    * h
+                    / 2.0
+            })
+            .sum()
+    }
+}
+
+/// A C² spline through `points` (at least two): tangents by centred
+/// differences (one-sided at the ends), second derivatives by the second
+/// difference (zero at the ends), one segment per pair of points.
+#[must_use]
+pub fn spline_through(points: &[Vec2]) -> Vec<QuinticBezier> {
+    let n = points.len();
+    if n < 2 {
+        return Vec::new();
+    }
+    let tangent = |i: usize| {
+        if i == 0 {
+            sub(points[1], points[0])
+        } else if i == n - 1 {
+            sub(points[n - 1], points[n - 2])
+        } else {
+            scale(sub(points[i + 1], points[i - 1]), 0.5)
+        }
+    };
+    let accel = |i: usize| {
+        if i == 0 || i == n - 1 {
+            (0.0, 0.0)
+        } else {
+            add(sub(points[i + 1], scale(points[i], 2.0)), points[i - 1])
+        }
+    };
+    (0..n - 1)
+        .map(|i| {
+            QuinticBezier::from_ends(
+                points[i],
+                points[i + 1],
+                tangent(i),
+                tangent(i + 1),
+                accel(i),
+                accel(i + 1),
+            )
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn near(a: Vec2, b: Vec2, tol: f64) -> bool {
+        (a.0 - b.0).hypot(a.1 - b.1) < tol
+    }
+
+    #[test]
+    fn ends_tangents_and_second_derivatives_are_the_given_ones() {
+        let q = QuinticBezier::from_ends(
+            (0.0, 0.0),
+            (2.0, 1.0),
+            (1.0, 0.5),
+            (0.0, 3.0),
+            (0.3, -0.2),
+            (1.5, 0.7),
+        );
+        assert!(near(q.point(0.0), (0.0, 0.0), 1e-12) && near(q.point(1.0), (2.0, 1.0), 1e-12));
+        assert!(
+            near(q.derivative(0.0), (1.0, 0.5), 1e-12)
+                && near(q.derivative(1.0), (0.0, 3.0), 1e-12)
+        );
+        assert!(near(q.second_derivative(0.0), (0.3, -0.2), 1e-12));
+        assert!(near(q.second_derivative(1.0), (1.5, 0.7), 1e-12));
+        // Derivatives agree with finite differences inside.
+        let (u, h) = (0.37, 1e-6);
+        let fd = scale(sub(q.point(u + h), q.point(u - h)), 0.5 / h);
+        assert!(near(fd, q.derivative(u), 1e-6));
+    }
+
+    #[test]
+    fn a_straight_segment_has_its_length_and_no_curvature() {
+        let q = QuinticBezier::from_ends(
+            (0.0, 0.0),
+            (3.0, 4.0),
+            (3.0, 4.0),
+            (3.0, 4.0),
+            (0.0, 0.0),
+            (0.0, 0.0),
+        );
+        assert!((q.length() - 5.0).abs() < 1e-9);
+        assert!(q.curvature(0.5).abs() < 1e-12);
+        let pts = q.sample(10);
+        assert_eq!(pts.len(), 11);
+    }
+
+    #[test]
+    fn splines_are_c2_at_their_joins() {
+        let pts = [(0.0, 0.0), (1.0, 0.2), (1.8, 1.0), (1.5, 2.0), (0.5, 2.4)];
+        let s = spline_through(&pts);
+        assert_eq!(s.len(), 4);
+        for w in s.windows(2) {
+            assert!(near(w[0].point(1.0), w[1].point(0.0), 1e-12));
+            assert!(near(w[0].derivative(1.0), w[1].derivative(0.0), 1e-12));
+            assert!(near(
+                w[0].second_derivative(1.0),
+                w[1].second_derivative(0.0),
+                1e-12
+            ));
+        }
+        // The spline passes through every point.
+        for (i, q) in s.iter().enumerate() {
+            assert!(near(q.point(0.0), pts[i], 1e-12));
+        }
+        // A circle-like turn to the left has positive curvature.
+        assert!(s[1].curvature(0.5) > 0.0);
+        assert!(spline_through(&pts[..1]).is_empty());
+    }
+}
