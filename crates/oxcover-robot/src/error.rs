@@ -14,6 +14,9 @@ pub enum Error {
         /// What is accepted.
         expected: &'static str,
     },
+    /// A robot description file could not be parsed.
+    #[error("robot description: {0}")]
+    Spec(String),
 }
 
 /// Shorthand for results of this crate.

@@ -56,7 +56,8 @@ pub(crate) fn sinc(x: f64) -> f64 {
 }
 
 /// A differential-drive robot.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct DiffDrive {
     /// Distance between the wheels' contact points (m).
     pub wheel_base: f64,

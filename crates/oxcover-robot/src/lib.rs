@@ -17,6 +17,9 @@
 //! - [`simulate`](mod@simulate): closed-loop tracking of a timed path at a fixed step
 //!   (reference, controller, wheel limits, exact motion), recording the
 //!   executed samples.
+//! - [`energy`]: a DC-motor wheel power model (torque constant, armature
+//!   resistance, rolling resistance, constant electronics load) giving the
+//!   joules of a run, and the RON robot description ([`RobotSpec`]).
 //! - [`bezier`]: quintic Bézier segments from end points, tangents and second
 //!   derivatives (seed 002, eq. 13) and C² splines through points.
 //! - [`spiral`]: the Archimedean spiral `r = (R/π)|θ|` of seed 002's spiral
@@ -36,6 +39,7 @@
 
 pub mod bezier;
 pub mod control;
+pub mod energy;
 pub mod error;
 pub mod kinematics;
 pub mod simulate;
@@ -44,6 +48,7 @@ pub mod timing;
 
 pub use bezier::{QuinticBezier, spline_through};
 pub use control::{Controller, Kanayama, Klancar, Reference, TrackingError};
+pub use energy::{EnergyModel, RobotSpec};
 pub use error::{Error, Result};
 pub use kinematics::{DiffDrive, Pose, wrap_angle};
 pub use simulate::{Sample, simulate};
