@@ -20,6 +20,10 @@
 //! - [`energy`]: a DC-motor wheel power model (torque constant, armature
 //!   resistance, rolling resistance, constant electronics load) giving the
 //!   joules of a run, and the RON robot description ([`RobotSpec`]).
+//! - [`geometry`]: a map's obstacles as boxes for ray casting (parry2d,
+//!   kept behind this module).
+//! - [`sensors`]: a ring of range rays with seeded Gaussian noise.
+//! - [`wall_follow`]: PID wall following on the lateral range.
 //! - [`bezier`]: quintic Bézier segments from end points, tangents and second
 //!   derivatives (seed 002, eq. 13) and C² splines through points.
 //! - [`spiral`]: the Archimedean spiral `r = (R/π)|θ|` of seed 002's spiral
@@ -41,16 +45,22 @@ pub mod bezier;
 pub mod control;
 pub mod energy;
 pub mod error;
+pub mod geometry;
 pub mod kinematics;
+pub mod sensors;
 pub mod simulate;
 pub mod spiral;
 pub mod timing;
+pub mod wall_follow;
 
 pub use bezier::{QuinticBezier, spline_through};
 pub use control::{Controller, Kanayama, Klancar, Reference, TrackingError};
 pub use energy::{EnergyModel, RobotSpec};
 pub use error::{Error, Result};
+pub use geometry::Obstacles;
 pub use kinematics::{DiffDrive, Pose, wrap_angle};
+pub use sensors::RangeSensor;
 pub use simulate::{Sample, simulate};
 pub use spiral::ArchimedeanSpiral;
 pub use timing::{Limits, Timing};
+pub use wall_follow::{Side, WallFollower};
