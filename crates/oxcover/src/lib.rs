@@ -8,6 +8,9 @@
 //!
 //! - [`planner`]: the pipeline (coverage problem → coverage grid → planner →
 //!   fine path → boundary pass → metre path) and the planner listing.
+//! - [`closed_loop`]: a plan executed by a simulated differential-drive robot
+//!   (time law, tracking controller, wheel limits, odometry noise, energy),
+//!   scored on the executed trajectory.
 //! - [`metrics`]: coverage, collisions, length, turns, rotation, redundancy,
 //!   steps, estimated time, exactly as the contract defines them.
 //! - [`path`]: cell paths to metre waypoints; the CSV path file.
@@ -31,6 +34,7 @@
 //! ```
 
 pub mod cli;
+pub mod closed_loop;
 pub mod demo;
 pub mod error;
 pub mod metrics;

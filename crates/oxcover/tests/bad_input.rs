@@ -86,6 +86,7 @@ fn bad_inputs_exit_2_with_one_line() {
         GOOD_YAML.replace("ok.pgm", "missing.pgm").as_bytes(),
     );
     let garbage_yaml = write(&d, "garbage.yaml", b"\x00\xff\x10 not yaml: [");
+    let bad_ron = write(&d, "robot.ron", b"(drive: (");
     let empty_map = write(&d, "empty.map", b"");
     let ragged_map = write(
         &d,
@@ -218,6 +219,43 @@ fn bad_inputs_exit_2_with_one_line() {
                 "NaN",
             ],
             "sweep angle is `NaN`, expected a finite angle",
+        ),
+        (
+            vec!["simulate", &good_yaml, "--planner", "dtc", "--dt", "0"],
+            "--dt is `0`",
+        ),
+        (
+            vec![
+                "simulate",
+                &good_yaml,
+                "--planner",
+                "dtc",
+                "--odometry-noise",
+                "NaN",
+            ],
+            "--odometry-noise is `NaN`",
+        ),
+        (
+            vec![
+                "simulate",
+                &good_yaml,
+                "--planner",
+                "dtc",
+                "--robot-spec",
+                &garbage_yaml,
+            ],
+            "garbage.yaml: cannot read",
+        ),
+        (
+            vec![
+                "simulate",
+                &good_yaml,
+                "--planner",
+                "dtc",
+                "--robot-spec",
+                &bad_ron,
+            ],
+            "--robot-spec is",
         ),
         (
             vec![

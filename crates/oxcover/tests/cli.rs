@@ -233,3 +233,39 @@ fn a_fixed_sweep_angle_is_honoured_and_reported() {
     }
     assert_ne!(paths[0], paths[1], "0° and 90° lanes give the same path");
 }
+
+#[test]
+fn simulate_executes_a_plan_and_scores_the_executed_path() {
+    let dir = scratch("sim");
+    let map = fixture("movingai/room-32-32-4.map");
+    let csv = dir.join("ex.csv").display().to_string();
+    let report = dir.join("ex.json").display().to_string();
+    let png = dir.join("ex.png").display().to_string();
+    run(&[
+        "simulate",
+        &map,
+        "--planner",
+        "spiral-stc",
+        "--resolution",
+        "0.5",
+        "--out",
+        &csv,
+        "--report",
+        &report,
+        "--png",
+        &png,
+    ]);
+    let text = std::fs::read_to_string(&csv).expect("read executed path");
+    assert!(text.starts_with("x,y,theta,t,v,omega,energy\n"));
+    let r = json(&std::fs::read_to_string(&report).expect("read report"));
+    for k in METRIC_KEYS {
+        assert!(r.get(k).is_some(), "report lacks {k}");
+    }
+    assert!(r["energy_j"].as_f64().unwrap() > 0.0);
+    assert!(r["tracking_rms_m"].as_f64().unwrap() < 0.05);
+    assert!(r["coverage"].as_f64().unwrap() > 0.9);
+    // The executed path file is a contract path file: eval reads it.
+    let (eval, _) = run(&["eval", &map, &csv, "--resolution", "0.5"]);
+    assert_eq!(json(&eval)["coverage"], r["coverage"]);
+    assert!(std::fs::metadata(&png).expect("png written").len() > 0);
+}

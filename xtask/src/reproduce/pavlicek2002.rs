@@ -235,6 +235,7 @@ pub fn run() -> anyhow::Result<()> {
                 &Scene {
                     map,
                     path: &o.points,
+                    planned: None,
                     covered: Some(&o.evaluation.covered),
                     coverable: Some(&o.evaluation.problem.coverable),
                     title: format!("{name} - {m}"),
@@ -312,6 +313,7 @@ pub fn run_floorplans() -> anyhow::Result<()> {
                 &Scene {
                     map,
                     path: &o.points,
+                    planned: None,
                     covered: Some(&o.evaluation.covered),
                     coverable: Some(&o.evaluation.problem.coverable),
                     title: format!("{name} - {}", p.name()),

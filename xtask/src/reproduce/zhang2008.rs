@@ -236,6 +236,7 @@ pub fn run() -> anyhow::Result<()> {
         let scene = Scene {
             map: &case.map,
             path: &o.points,
+            planned: None,
             covered: Some(&o.evaluation.covered),
             coverable: Some(&o.evaluation.problem.coverable),
             title: "simple_rooms - rect-priority (no boundary pass)".into(),

@@ -40,6 +40,9 @@ pub struct Scene<'a> {
     pub map: &'a OccupancyGrid,
     /// Metre waypoints (may be empty).
     pub path: &'a [Point],
+    /// A second path drawn thin under the first (the plan, when `path` is
+    /// what a robot executed).
+    pub planned: Option<&'a [Point]>,
     /// Covered cells, if known.
     pub covered: Option<&'a Grid<bool>>,
     /// Coverable cells, if known (uncovered ones are drawn as missed).
@@ -79,6 +82,8 @@ impl Shade {
 
 /// Colour of the path line.
 pub(crate) const PATH_RGB: [u8; 3] = [31, 78, 156];
+/// Colour of the planned path under an executed one.
+pub(crate) const PLANNED_RGB: [u8; 3] = [235, 120, 20];
 /// Colour of the start marker.
 pub(crate) const START_RGB: [u8; 3] = [30, 160, 60];
 /// Colour of the end marker.
@@ -271,6 +276,7 @@ mod tests {
         let scene = |map| Scene {
             map,
             path: &[],
+            planned: None,
             covered: None,
             coverable: None,
             title: "a title".into(),
@@ -296,6 +302,7 @@ mod tests {
         let scene = Scene {
             map: &map,
             path: &[],
+            planned: None,
             covered: None,
             coverable: None,
             title: String::new(),

@@ -6,8 +6,8 @@ use tiny_skia::{
 };
 
 use super::{
-    END_RGB, Layout, MARGIN_PX, PATH_RGB, START_RGB, Scene, Swatch, arrow_marks, legend_key,
-    map_raster,
+    END_RGB, Layout, MARGIN_PX, PATH_RGB, PLANNED_RGB, START_RGB, Scene, Swatch, arrow_marks,
+    legend_key, map_raster,
 };
 use crate::error::{Error, Result};
 
@@ -23,12 +23,37 @@ pub fn render_png(scene: &Scene<'_>) -> Result<Vec<u8>> {
     let raster = map_raster(scene, &layout);
     blit(&mut pm, MARGIN_PX, MARGIN_PX, layout.map_w, &raster);
 
+    let stroke_w = (layout.scale * 0.3).clamp(1.0, 3.0) as f32;
+    if let Some(planned) = scene.planned {
+        let mut pb = PathBuilder::new();
+        for (k, p) in planned.iter().enumerate() {
+            let (x, y) = layout.pixel_of(scene.map, p);
+            if k == 0 {
+                pb.move_to(x as f32, y as f32);
+            } else {
+                pb.line_to(x as f32, y as f32);
+            }
+        }
+        if let Some(path) = pb.finish() {
+            let stroke = Stroke {
+                width: (stroke_w * 0.6).max(1.0),
+                line_join: LineJoin::Round,
+                ..Stroke::default()
+            };
+            pm.stroke_path(
+                &path,
+                &paint(PLANNED_RGB),
+                &stroke,
+                Transform::identity(),
+                None,
+            );
+        }
+    }
     let px: Vec<(f64, f64)> = scene
         .path
         .iter()
         .map(|p| layout.pixel_of(scene.map, p))
         .collect();
-    let stroke_w = (layout.scale * 0.3).clamp(1.0, 3.0) as f32;
     if px.len() >= 2 {
         let mut pb = PathBuilder::new();
         pb.move_to(px[0].0 as f32, px[0].1 as f32);

@@ -4,8 +4,8 @@
 use std::fmt::Write as _;
 
 use super::{
-    END_RGB, Layout, MARGIN_PX, PATH_RGB, START_RGB, Scene, Swatch, arrow_marks, legend_key,
-    map_raster,
+    END_RGB, Layout, MARGIN_PX, PATH_RGB, PLANNED_RGB, START_RGB, Scene, Swatch, arrow_marks,
+    legend_key, map_raster,
 };
 use crate::error::Result;
 
@@ -32,12 +32,25 @@ pub fn render_svg(scene: &Scene<'_>) -> Result<String> {
         mh = layout.map_h,
         data = base64(&png)
     );
+    let stroke = (layout.scale * 0.3).clamp(1.0, 3.0);
+    if let Some(planned) = scene.planned.filter(|p| p.len() >= 2) {
+        let _ = write!(
+            s,
+            r#"<polyline fill="none" stroke-linejoin="round" stroke="{}" stroke-width="{:.2}" points=""#,
+            hex(PLANNED_RGB),
+            (stroke * 0.6).max(1.0)
+        );
+        for p in planned {
+            let (x, y) = layout.pixel_of(scene.map, p);
+            let _ = write!(s, "{x:.2},{y:.2} ");
+        }
+        s.push_str("\"/>\n");
+    }
     let px: Vec<(f64, f64)> = scene
         .path
         .iter()
         .map(|p| layout.pixel_of(scene.map, p))
         .collect();
-    let stroke = (layout.scale * 0.3).clamp(1.0, 3.0);
     if px.len() >= 2 {
         s.push_str(r#"<polyline fill="none" stroke-linejoin="round" stroke-linecap="round""#);
         let _ = write!(
