@@ -81,7 +81,7 @@ impl BorderExpansionPlanner {
         let Walk {
             mut path, order, ..
         } = walk;
-        path.cover_leftovers(input.coarse)?;
+        path.cover_leftovers(input.coarse, input.tool_cells)?;
         Ok(BorderPlan {
             roads,
             order,

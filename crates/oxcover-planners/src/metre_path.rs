@@ -141,8 +141,12 @@ impl<'a> PathBuilder<'a> {
 
     /// Visits every coverage cell whose representative is not within half a
     /// coverage cell of the path, nearest first.
-    pub(crate) fn cover_leftovers(&mut self, coarse: &CoarseGrid) -> Result<()> {
-        let radius = coarse.block_size() as f64 / 2.0 + 1e-9;
+    ///
+    /// The reach is half a coverage cell, or the tool radius when that is
+    /// smaller (a tool narrower than one map cell covers only the cells whose
+    /// centres the path passes close to).
+    pub(crate) fn cover_leftovers(&mut self, coarse: &CoarseGrid, tool_cells: f64) -> Result<()> {
+        let radius = (coarse.block_size() as f64 / 2.0).min(tool_cells) + 1e-9;
         let mut wanted = Grid::new(self.plannable.width(), self.plannable.height(), false);
         for rep in coarse.representatives().as_slice().iter().flatten() {
             wanted[*rep] = true;
@@ -187,16 +191,18 @@ fn deviation(a: GridPoint, b: GridPoint, m: GridPoint) -> f64 {
     (px * px + py * py).sqrt()
 }
 
-/// Clears `wanted` at representatives within `radius` (at most half a
-/// coverage cell) of the polyline `points`, by exact point-to-segment distance.
+/// Clears `wanted` at representatives within `radius` of a sample of the
+/// polyline `points`.
 ///
-/// Each segment is sampled every half coverage cell; a representative within
-/// `radius` of the segment is then within ¾ of a coverage cell of a sample, so
-/// it lies in one of the 3×3 coverage cells around that sample.
+/// The samples are the contract's (`oxcover_grid::footprint`): each segment
+/// split into `ceil(len / ¼)` equal parts, waypoints included, so a
+/// representative marked here is one the metrics count as covered. (An exact
+/// point-to-segment distance would also mark representatives that lie within
+/// the radius of the segment but of no sample, which the metrics then miss.)
 fn mark_near(coarse: &CoarseGrid, points: &[GridPoint], radius: f64, wanted: &mut Grid<bool>) {
     let reps = coarse.representatives();
     let k = coarse.block_size() as f64;
-    let mut visit = |p: GridPoint, a: GridPoint, b: GridPoint| {
+    let mut visit = |p: GridPoint| {
         let (bc, br) = ((p.0 / k).floor() as i64, (p.1 / k).floor() as i64);
         for r in br - 1..=br + 1 {
             for c in bc - 1..=bc + 1 {
@@ -206,22 +212,27 @@ fn mark_near(coarse: &CoarseGrid, points: &[GridPoint], radius: f64, wanted: &mu
                 let Some(Some(rep)) = reps.get(Cell::new(r as usize, c as usize)) else {
                     continue;
                 };
-                if wanted[*rep] && deviation(a, b, cell_center(*rep)) <= radius {
+                if !wanted[*rep] {
+                    continue;
+                }
+                let (x, y) = cell_center(*rep);
+                let (dx, dy) = (x - p.0, y - p.1);
+                if dx * dx + dy * dy <= radius * radius {
                     wanted[*rep] = false;
                 }
             }
         }
     };
-    if let [only] = points {
-        visit(*only, *only, *only);
+    if let Some(&first) = points.first() {
+        visit(first);
     }
     for w in points.windows(2) {
         let (a, b) = (w[0], w[1]);
         let len = (b.0 - a.0).hypot(b.1 - a.1);
-        let n = (len / (k / 2.0)).ceil().max(1.0) as usize;
-        for i in 0..=n {
+        let n = (len / 0.25 - 1e-9).ceil().max(1.0) as usize;
+        for i in 1..=n {
             let t = i as f64 / n as f64;
-            visit((a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)), a, b);
+            visit((a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)));
         }
     }
 }
@@ -258,7 +269,7 @@ mod tests {
         let coarse = CoarseGrid::new(&m, 1);
         let mut b = PathBuilder::new(&m, Cell::new(0, 0));
         b.go_to((3.5, 0.5)).unwrap();
-        b.cover_leftovers(&coarse).unwrap();
+        b.cover_leftovers(&coarse, 0.5).unwrap();
         let mut left = Grid::new(4, 3, true);
         mark_near(&coarse, b.points(), 0.5 + 1e-9, &mut left);
         assert_eq!(left.count_true(), 0);

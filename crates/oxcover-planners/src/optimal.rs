@@ -326,6 +326,7 @@ pub fn optimal(coarse: &CoarseGrid, start: Cell, params: &Optimal) -> Result<Opt
             start,
             seed: 0,
             frame: oxcover_grid::MapFrame::unit(passable.width(), passable.height()),
+            tool_cells: 0.5,
         };
         if let Ok(fd) = full_dtc(&input) {
             if steps(&fd.shortest) < steps(&best) {

@@ -28,6 +28,10 @@ pub struct PlannerInput<'a> {
     pub seed: u64,
     /// Where the grid lies in metres (for planners returning metre paths).
     pub frame: MapFrame,
+    /// Tool radius in fine cells: a fine cell counts as covered when its
+    /// centre passes within it (the contract). At least half a coverage cell
+    /// in practice; smaller when the tool is narrower than one map cell.
+    pub tool_cells: f64,
 }
 
 impl<'a> PlannerInput<'a> {
@@ -40,6 +44,7 @@ impl<'a> PlannerInput<'a> {
             start: coarse.coarse_of(fine_start),
             seed: 0,
             frame: MapFrame::unit(plannable.width(), plannable.height()),
+            tool_cells: coarse.block_size() as f64 / 2.0,
         }
     }
 

@@ -131,7 +131,7 @@ impl Sweep {
         for &cell in &order {
             sweep_cell(&mut path, &decomposition, cell)?;
         }
-        path.cover_leftovers(input.coarse)?;
+        path.cover_leftovers(input.coarse, input.tool_cells)?;
         let points = path.into_metres(&input.frame);
         Ok(SweepPlan {
             angle_deg: angle,

@@ -179,6 +179,7 @@ pub fn plan_with(
         start: coarse.coarse_of(problem.start),
         seed: request.seed,
         frame: *frame,
+        tool_cells: request.robot.tool_radius / frame.resolution(),
     };
     let output = planner.plan(&input)?;
     let (planned, tail) = match &output {

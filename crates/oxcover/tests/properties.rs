@@ -116,3 +116,16 @@ proptest! {
         }
     }
 }
+
+/// Found by the small-map property: `trapezoidal` lanes at an angle left a
+/// corner cell whose centre was within the tool radius of a segment but of no
+/// contract sample (the leftover pass then measured distance to segments,
+/// not to samples).
+#[test]
+fn leftovers_are_judged_by_the_contract_samples() {
+    let map = random_map(2, 9, 7, 9_952_582_675_221_721_085, 1.0);
+    let robot = DiscRobot::new(0.0, 0.5).unwrap();
+    for p in planners() {
+        check(&map, robot, p.name, p.complete).unwrap();
+    }
+}
