@@ -277,8 +277,8 @@ fn robot_of(args: &RobotArgs, map: &OccupancyGrid) -> Result<DiscRobot> {
     )?)
 }
 
-fn cmd_plan(a: &PlanArgs) -> Result<()> {
-    crate::planner::find_planner(&a.planner)?;
+/// The map and the plan request the `plan` options describe.
+fn map_and_request(a: &PlanArgs) -> Result<(OccupancyGrid, PlanRequest)> {
     let map = load(&a.map, a.robot.resolution)?;
     let robot = robot_of(&a.robot, &map)?;
     let request = PlanRequest {
@@ -289,6 +289,12 @@ fn cmd_plan(a: &PlanArgs) -> Result<()> {
         boundary_pass: a.boundary_pass == OnOff::On,
         sweep_angle_deg: a.sweep_angle,
     };
+    Ok((map, request))
+}
+
+fn cmd_plan(a: &PlanArgs) -> Result<()> {
+    crate::planner::find_planner(&a.planner)?;
+    let (map, request) = map_and_request(a)?;
     let outcome = plan(&map, &request)?;
     let name = a.map.display().to_string();
     let written = write_plan_outputs(
@@ -347,16 +353,8 @@ fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
             .map_or_else(|| "bundled".into(), |f| f.display().to_string()),
         expected: format!("a valid robot description ({e})"),
     })?;
-    let map = load(&p.map, p.robot.resolution)?;
-    let robot = robot_of(&p.robot, &map)?;
-    let request = PlanRequest {
-        planner: p.planner.clone(),
-        robot,
-        start: p.start,
-        seed: p.seed,
-        boundary_pass: p.boundary_pass == OnOff::On,
-        sweep_angle_deg: p.sweep_angle,
-    };
+    let (map, request) = map_and_request(p)?;
+    let robot = request.robot;
     let outcome = plan(&map, &request)?;
     let cfg = ClosedLoop {
         spec,
