@@ -457,8 +457,7 @@ mod tests {
     use super::*;
 
     fn mask(rows: &[&str]) -> Grid<bool> {
-        let (map, _) = oxcover_grid::io::parse_ascii(&rows.join("\n")).expect("valid map");
-        map.free_mask()
+        oxcover_grid::io::ascii_mask(rows).expect("valid map")
     }
 
     fn is_loop(cells: &[Cell]) -> bool {

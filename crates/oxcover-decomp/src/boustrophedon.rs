@@ -25,8 +25,7 @@ mod tests {
     use oxcover_grid::Grid;
 
     fn mask(rows: &[&str]) -> Grid<bool> {
-        let (map, _) = oxcover_grid::io::parse_ascii(&rows.join("\n")).expect("valid map");
-        map.free_mask()
+        oxcover_grid::io::ascii_mask(rows).expect("valid map")
     }
 
     #[test]

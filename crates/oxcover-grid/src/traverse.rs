@@ -31,6 +31,19 @@ pub fn cell_of<T>(grid: &Grid<T>, p: GridPoint) -> Option<Cell> {
     (c < grid.width() && r < grid.height()).then(|| Cell::new(r, c))
 }
 
+/// Distance from `m` to the segment `a b` (to `a` when the segment is a point).
+#[must_use]
+pub fn segment_distance(a: GridPoint, b: GridPoint, m: GridPoint) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 {
+        (((m.0 - a.0) * dx + (m.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a.0 + t * dx - m.0).hypot(a.1 + t * dy - m.1)
+}
+
 /// Calls `f(cell, t_enter, t_exit)` for every cell the segment `a → b`
 /// crosses, in order, with the segment parameter `t ∈ [0, 1]` where it enters
 /// and leaves the cell; stops early when `f` returns `false`. Parts outside the
@@ -214,6 +227,14 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn distance_to_a_segment() {
+        assert!((segment_distance((0.0, 0.0), (4.0, 0.0), (2.0, 3.0)) - 3.0).abs() < 1e-12);
+        // Beyond an end: to the end point.
+        assert!((segment_distance((0.0, 0.0), (4.0, 0.0), (7.0, 4.0)) - 5.0).abs() < 1e-12);
+        assert!((segment_distance((1.0, 1.0), (1.0, 1.0), (4.0, 5.0)) - 5.0).abs() < 1e-12);
     }
 
     #[test]

@@ -14,7 +14,7 @@
 //! walls, inner strips where offsets vanish).
 
 use oxcover_distance::{AStar, Wavefront, cidt};
-use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear};
+use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear, segment_distance};
 use oxcover_grid::{Cell, CoarseGrid, Grid, MapFrame, Point};
 
 use crate::error::{Error, Result};
@@ -111,7 +111,7 @@ impl<'a> PathBuilder<'a> {
                     && (tolerance.is_infinite()
                         || targets[i..j]
                             .iter()
-                            .all(|&m| deviation(anchor, targets[j], m) <= tolerance))
+                            .all(|&m| segment_distance(anchor, targets[j], m) <= tolerance))
             };
             // `good` passes (or is `i`, always taken); `bad` fails or is past the end.
             let (mut good, mut bad) = (i, targets.len());
@@ -178,19 +178,6 @@ impl<'a> PathBuilder<'a> {
     }
 }
 
-/// Distance from `m` to the segment `a b`.
-fn deviation(a: GridPoint, b: GridPoint, m: GridPoint) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 {
-        (((m.0 - a.0) * dx + (m.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let (px, py) = (a.0 + t * dx - m.0, a.1 + t * dy - m.1);
-    (px * px + py * py).sqrt()
-}
-
 /// Clears `wanted` at representatives within `radius` of a sample of the
 /// polyline `points`.
 ///
@@ -242,8 +229,7 @@ mod tests {
     use super::*;
 
     fn mask(rows: &[&str]) -> Grid<bool> {
-        let (map, _) = oxcover_grid::io::parse_ascii(&rows.join("\n")).expect("valid map");
-        map.free_mask()
+        oxcover_grid::io::ascii_mask(rows).expect("valid map")
     }
 
     #[test]

@@ -5,7 +5,7 @@
 
 use oxcover_grid::Point;
 use oxcover_grid::random::{random_density, uniform_connected};
-use oxcover_grid::traverse::{cell_center, segment_clear};
+use oxcover_grid::traverse::{cell_center, segment_clear, segment_distance};
 use oxcover_grid::{CoarseGrid, Coverability, DiscRobot, Grid, OccupancyGrid};
 use oxcover_planners::optimal::{Optimal, lower_bound, optimal};
 use oxcover_planners::{PlanOutput, PlannerInput, expand, registry};
@@ -46,16 +46,6 @@ fn check_metres(input: &PlannerInput<'_>, points: &[Point], complete: bool) -> R
     Ok(())
 }
 
-fn segment_distance(a: (f64, f64), b: (f64, f64), m: (f64, f64)) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let l2 = dx * dx + dy * dy;
-    let t = if l2 > 0.0 {
-        (((m.0 - a.0) * dx + (m.1 - a.1) * dy) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (a.0 + t * dx - m.0).hypot(a.1 + t * dy - m.1)
-}
 use proptest::prelude::*;
 
 fn problem(map: &OccupancyGrid) -> Option<Coverability> {

@@ -59,6 +59,16 @@ pub fn parse_ascii(text: &str) -> Result<(OccupancyGrid, Option<Cell>)> {
     Ok((OccupancyGrid::unit(grid), start))
 }
 
+/// The free cells of the ASCII map whose rows are `rows` (the
+/// [`parse_ascii`] format, one string per row): a compact way to write small
+/// masks in tests and examples.
+///
+/// # Errors
+/// As [`parse_ascii`].
+pub fn ascii_mask(rows: &[&str]) -> Result<Grid<bool>> {
+    Ok(parse_ascii(&rows.join("\n"))?.0.free_mask())
+}
+
 /// Draws a map as ASCII (`#` occupied, `.` free, `?` unknown), overlaying
 /// `marks` (cell, character) in order, so later marks win.
 #[must_use]

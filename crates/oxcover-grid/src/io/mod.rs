@@ -13,7 +13,7 @@ mod pgm;
 mod raster;
 mod ros;
 
-pub use ascii::{parse_ascii, to_ascii};
+pub use ascii::{ascii_mask, parse_ascii, to_ascii};
 pub use movingai::{parse_movingai, read_movingai};
 pub use ros::{
     MapYaml, Mode, Thresholds, parse_map_yaml, read_ros_yaml, read_ros_yaml_from_bytes,
