@@ -102,6 +102,28 @@ fn decomposition_figure(
     ))
 }
 
+/// A PNG of a plan on `map`: covered and missed cells, the path, its metrics.
+fn plan_png(
+    map: &OccupancyGrid,
+    title: &str,
+    o: &PlanOutcome,
+    file: &std::path::Path,
+) -> anyhow::Result<()> {
+    render_to_file(
+        &Scene {
+            map,
+            path: &o.points,
+            planned: None,
+            covered: Some(&o.evaluation.covered),
+            coverable: Some(&o.evaluation.problem.coverable),
+            title: title.to_string(),
+            rows: metric_rows(&o.evaluation.metrics),
+        },
+        file,
+    )?;
+    Ok(())
+}
+
 /// Runs `pavlicek2002`.
 ///
 /// # Errors
@@ -231,18 +253,7 @@ pub fn run() -> anyhow::Result<()> {
         for (m, p) in methods(false) {
             let o = run_plan(map, p.as_ref())?;
             let file = format!("pavlicek2002_{m}.png");
-            render_to_file(
-                &Scene {
-                    map,
-                    path: &o.points,
-                    planned: None,
-                    covered: Some(&o.evaluation.covered),
-                    coverable: Some(&o.evaluation.problem.coverable),
-                    title: format!("{name} - {m}"),
-                    rows: metric_rows(&o.evaluation.metrics),
-                },
-                &out.join(&file),
-            )?;
+            plan_png(map, &format!("{name} - {m}"), &o, &out.join(&file))?;
             let _ = writeln!(md, "![{m} on {name}]({file})\n");
         }
     }
@@ -309,18 +320,7 @@ pub fn run_floorplans() -> anyhow::Result<()> {
         for p in registry() {
             let Ok(o) = run_plan(map, *p) else { continue };
             let file = format!("floorplans_{}.png", p.name());
-            render_to_file(
-                &Scene {
-                    map,
-                    path: &o.points,
-                    planned: None,
-                    covered: Some(&o.evaluation.covered),
-                    coverable: Some(&o.evaluation.problem.coverable),
-                    title: format!("{name} - {}", p.name()),
-                    rows: metric_rows(&o.evaluation.metrics),
-                },
-                &out.join(&file),
-            )?;
+            plan_png(map, &format!("{name} - {}", p.name()), &o, &out.join(&file))?;
             let _ = writeln!(md, "![{} on {name}]({file})\n", p.name());
         }
     }
