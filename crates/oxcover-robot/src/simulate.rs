@@ -13,6 +13,16 @@ use crate::error::{Result, positive};
 use crate::kinematics::{DiffDrive, Pose};
 use crate::timing::Timing;
 
+/// Most control steps one run may take (a sample each, about 50 bytes): a
+/// smaller step or a longer run is refused rather than exhausting memory.
+pub const MAX_STEPS: usize = 10_000_000;
+
+/// Number of steps of `dt` in `seconds`, if at most [`MAX_STEPS`].
+pub(crate) fn step_count(seconds: f64, dt: f64) -> Option<usize> {
+    let n = (seconds / dt).ceil();
+    (n.is_finite() && n <= MAX_STEPS as f64).then_some(n as usize)
+}
+
 /// One executed sample.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sample {
@@ -32,8 +42,8 @@ pub struct Sample {
 /// then `settle` seconds holding the final reference.
 ///
 /// # Errors
-/// A non-positive or non-finite `dt`, or a negative or non-finite `settle`
-/// ([`crate::Error::BadParameter`]).
+/// A non-positive or non-finite `dt`, a negative or non-finite `settle`, or
+/// more than [`MAX_STEPS`] steps ([`crate::Error::BadParameter`]).
 pub fn simulate(
     timing: &Timing,
     controller: &dyn Controller,
@@ -50,7 +60,13 @@ pub fn simulate(
             expected: "a finite number of seconds, 0 or more",
         });
     }
-    let steps = ((timing.duration() + settle) / dt).ceil() as usize;
+    let Some(steps) = step_count(timing.duration() + settle, dt) else {
+        return Err(crate::Error::BadParameter {
+            name: "time step",
+            value: dt,
+            expected: "a step giving at most 10 million steps over the run",
+        });
+    };
     let mut out = Vec::with_capacity(steps + 1);
     let (mut pose, mut last) = (start, (0.0, 0.0));
     for k in 0..=steps {
@@ -125,5 +141,8 @@ mod tests {
         let c = Klancar::default();
         assert!(simulate(&timing, &c, &robot, Pose::default(), 0.0, 1.0).is_err());
         assert!(simulate(&timing, &c, &robot, Pose::default(), 0.01, f64::NAN).is_err());
+        // Too many steps is refused, not allocated.
+        assert!(simulate(&timing, &c, &robot, Pose::default(), 1e-9, 1.0).is_err());
+        assert!(simulate(&timing, &c, &robot, Pose::default(), 0.01, 1e300).is_err());
     }
 }

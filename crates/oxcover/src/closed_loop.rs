@@ -88,8 +88,9 @@ pub struct Run {
 /// disc `robot` (the metrics' footprint).
 ///
 /// # Errors
-/// A bad step, noise or limit ([`Error::Argument`]); a path the metrics
-/// refuse.
+/// A bad step (or one giving more than
+/// [`oxcover_robot::simulate::MAX_STEPS`] steps), noise or limit
+/// ([`Error::Argument`]); a path the metrics refuse.
 pub fn execute(
     map: &OccupancyGrid,
     robot: DiscRobot,
@@ -128,7 +129,20 @@ pub fn execute(
     let start = timing.at(0.0).pose;
     let (mut believed, mut truth, mut last) = (start, start, (0.0, 0.0));
     let settle = 2.0;
-    let steps = ((timing.duration() + settle) / cfg.dt).ceil() as usize;
+    let run_s = timing.duration() + settle;
+    let steps = (run_s / cfg.dt).ceil();
+    if !(steps.is_finite() && steps <= oxcover_robot::simulate::MAX_STEPS as f64) {
+        return Err(Error::Argument {
+            name: "--dt",
+            value: cfg.dt.to_string(),
+            expected: format!(
+                "a step giving at most {} steps over this {run_s:.0} s run (at least {:.2e} s)",
+                oxcover_robot::simulate::MAX_STEPS,
+                run_s / oxcover_robot::simulate::MAX_STEPS as f64
+            ),
+        });
+    }
+    let steps = steps as usize;
     let mut samples = Vec::with_capacity(steps + 1);
     let (mut energy, mut prev_cmd) = (0.0, (0.0, 0.0));
     for k in 0..=steps {

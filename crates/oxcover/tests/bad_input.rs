@@ -225,6 +225,10 @@ fn bad_inputs_exit_2_with_one_line() {
             "--dt is `0`",
         ),
         (
+            vec!["simulate", &good_yaml, "--planner", "dtc", "--dt", "1e-9"],
+            "--dt is `0.000000001`, expected a step giving at most 10000000 steps",
+        ),
+        (
             vec![
                 "simulate",
                 &good_yaml,
