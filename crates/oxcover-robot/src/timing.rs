@@ -11,11 +11,19 @@
 //! lower of their speeds along its whole length. Speeds at the vertices then obey the
 //! acceleration limit by a forward and a backward pass (`v₁² ≤ v₀² + 2 a l`),
 //! and every segment is driven with a trapezoidal (or triangular) speed
-//! profile between its end speeds.
+//! profile between its end speeds. Through a gentle vertex the reference
+//! heading eases from one segment's heading to the next over 0.1 m (half a
+//! segment when shorter) on either side, with the matching feed-forward turn
+//! rate: a densely sampled curve is tracked as a curve, not as a chain of
+//! heading jumps.
 
 use crate::control::Reference;
 use crate::error::{Result, positive};
 use crate::kinematics::{Pose, wrap_angle};
+
+/// Distance (m) over which the reference heading eases through a gentle
+/// vertex on either side (half a segment when shorter).
+const BEND_LENGTH: f64 = 0.1;
 
 /// Limits for [`Timing::new`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -62,9 +70,14 @@ impl Limits {
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Piece {
     /// A straight segment from `from` (heading `from.theta`) of `length`,
-    /// entered at `v0`, left at `v1`, cruising at most at `peak`.
+    /// entered at `v0`, left at `v1`, cruising at most at `peak`; the
+    /// reference heading goes from `from.theta + bend.0` to
+    /// `from.theta + bend.1` along it (half of each gentle vertex's turn on
+    /// either side, so a sampled curve has a continuous heading and a
+    /// feed-forward turn rate).
     Drive {
         from: Pose,
+        bend: (f64, f64),
         length: f64,
         v0: f64,
         v1: f64,
@@ -159,6 +172,14 @@ impl Timing {
         let mut pieces = Vec::new();
         for (i, &(length, heading)) in segs.iter().enumerate() {
             let from = Pose::new(pts[i].0, pts[i].1, heading);
+            let gentle = |k: usize| {
+                if k > 0 && k < segs.len() && turn[k].abs() <= limits.corner_angle {
+                    turn[k] / 2.0
+                } else {
+                    0.0
+                }
+            };
+            let bend = (-gentle(i), gentle(i + 1));
             if i > 0 && cap[i] == 0.0 && turn[i] != 0.0 {
                 pieces.push(Piece::Turn {
                     at: Pose::new(pts[i].0, pts[i].1, segs[i - 1].1),
@@ -181,6 +202,7 @@ impl Timing {
                 / peak;
             pieces.push(Piece::Drive {
                 from,
+                bend,
                 length,
                 v0,
                 v1,
@@ -250,6 +272,7 @@ impl Timing {
             }
             Piece::Drive {
                 from,
+                bend,
                 length,
                 v0,
                 v1,
@@ -271,10 +294,28 @@ impl Timing {
                 };
                 let s = s.clamp(0.0, length);
                 let (sin, cos) = from.theta.sin_cos();
+                // Heading offset: `bend.0` at the start easing to 0 over
+                // `d`, 0 easing to `bend.1` over the last `d`.
+                let d = (length / 2.0).min(BEND_LENGTH);
+                let (mut off, mut rate) = (0.0, 0.0);
+                if d > 0.0 {
+                    if s < d {
+                        off += bend.0 * (1.0 - s / d);
+                        rate -= bend.0 / d;
+                    }
+                    if length - s < d {
+                        off += bend.1 * (1.0 - (length - s) / d);
+                        rate += bend.1 / d;
+                    }
+                }
                 Reference {
-                    pose: Pose::new(from.x + s * cos, from.y + s * sin, from.theta),
+                    pose: Pose::new(
+                        from.x + s * cos,
+                        from.y + s * sin,
+                        wrap_angle(from.theta + off),
+                    ),
                     v,
-                    omega: 0.0,
+                    omega: v * rate,
                 }
             }
         }
@@ -340,6 +381,18 @@ mod tests {
         }
         // No stop inside: it reaches the curvature speed.
         assert!(top > 0.52 * 0.25 * 0.99, "{top}");
+        // The heading turns continuously, with the curve's turn rate v/R as
+        // feed-forward (away from the ends).
+        let (mut prev, n) = (t.at(1.0), 4000);
+        for k in 1..=n {
+            let time = 1.0 + (t.duration() - 2.0) * k as f64 / n as f64;
+            let r = t.at(time);
+            assert!(wrap_angle(r.pose.theta - prev.pose.theta).abs() < 0.02);
+            if r.v > 0.1 {
+                assert!((r.omega - r.v / 0.25).abs() < 0.01 * r.v / 0.25 + 1e-3, "{r:?}");
+            }
+            prev = r;
+        }
     }
 
     #[test]
