@@ -75,9 +75,10 @@ fn rank(name: &str) -> Option<u32> {
         "oxcover-grid" => 0,
         "oxcover-distance" => 1,
         "oxcover-decomp" => 2,
-        "oxcover-planners" | "oxcover-robot" | "oxcover-vision" => 3,
-        "oxcover" => 4,
-        "xtask" => 5,
+        "oxcover-robot" | "oxcover-vision" => 3,
+        "oxcover-planners" => 4,
+        "oxcover" => 5,
+        "xtask" => 6,
         _ => return None,
     })
 }

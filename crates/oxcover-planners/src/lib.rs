@@ -16,6 +16,7 @@
 //! | `boustrophedon` | [`sweep`] | Choset & Pignon 1997 (seed 004) | yes |
 //! | `trapezoidal` | [`sweep`] | slab decomposition (seed 004, Fig. 8) | yes |
 //! | `border-expansion` | [`border_expansion`] | Pavlicek et al. 2002 (seed 004) | yes |
+//! | `smooth` | [`smooth`] | Lee et al. 2011 (seed 002): spiral, wall following, CFCIDT, PSO-tuned Bézier virtual-wall paths | yes |
 //!
 //! Planners work on the coverage grid ([`oxcover_grid::CoarseGrid`]; one tool
 //! diameter per cell, the fine grid itself with the default radii) and return
@@ -48,8 +49,10 @@ pub mod grid_cover;
 mod metre_path;
 pub mod optimal;
 pub mod planner;
+pub mod pso;
 pub mod rect_priority;
 mod route;
+pub mod smooth;
 pub mod stc;
 pub mod sweep;
 #[cfg(test)]

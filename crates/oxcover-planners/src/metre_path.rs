@@ -26,6 +26,9 @@ pub(crate) struct PathBuilder<'a> {
     wave: Wavefront,
     astar: AStar,
     points: Vec<GridPoint>,
+    /// Least distance (cells) a new straight piece keeps from non-plannable
+    /// cells; 0 = only exact traversal.
+    clearance: f64,
 }
 
 impl<'a> PathBuilder<'a> {
@@ -36,7 +39,22 @@ impl<'a> PathBuilder<'a> {
             wave: Wavefront::new(plannable),
             astar: AStar::new(plannable),
             points: vec![cell_center(start)],
+            clearance: 0.0,
         }
+    }
+
+    /// The same builder keeping every new straight piece at least
+    /// `clearance` cells (at most 0.5, what a path through cell centres
+    /// keeps) from non-plannable cells.
+    pub(crate) fn with_clearance(mut self, clearance: f64) -> Self {
+        self.clearance = clearance.clamp(0.0, 0.5);
+        self
+    }
+
+    /// Whether the straight piece `a → b` may be added.
+    pub(crate) fn clear(&self, a: GridPoint, b: GridPoint) -> bool {
+        segment_clear(self.plannable, a, b)
+            && (self.clearance <= 0.0 || segment_clearance(self.plannable, a, b, self.clearance))
     }
 
     /// The current end point.
@@ -45,12 +63,12 @@ impl<'a> PathBuilder<'a> {
     }
 
     /// The points so far.
-    #[cfg(test)]
     pub(crate) fn points(&self) -> &[GridPoint] {
         &self.points
     }
 
-    fn push(&mut self, p: GridPoint) {
+    /// Appends `p` as it is (the caller has checked the piece).
+    pub(crate) fn push(&mut self, p: GridPoint) {
         if self.last() != p {
             self.points.push(p);
         }
@@ -60,7 +78,7 @@ impl<'a> PathBuilder<'a> {
     /// along a straightened shortest route.
     pub(crate) fn go_to(&mut self, q: GridPoint) -> Result<()> {
         let p = self.last();
-        if segment_clear(self.plannable, p, q) {
+        if self.clear(p, q) {
             self.push(q);
             return Ok(());
         }
@@ -107,7 +125,7 @@ impl<'a> PathBuilder<'a> {
             // Can the path go straight from `anchor` to `targets[j]`, skipping
             // `targets[i..j]`?
             let ok = |j: usize| {
-                segment_clear(self.plannable, anchor, targets[j])
+                self.clear(anchor, targets[j])
                     && (tolerance.is_infinite()
                         || targets[i..j]
                             .iter()
@@ -176,6 +194,57 @@ impl<'a> PathBuilder<'a> {
             .map(|(x, y)| frame.position(y - 0.5, x - 0.5))
             .collect()
     }
+}
+
+/// Whether every point of the segment `a → b` keeps at least `clearance`
+/// cells from every non-plannable (or outside) cell square, checked at
+/// points ¼ of the clearance apart (and never more than 0.1 cells apart).
+pub(crate) fn segment_clearance(
+    mask: &Grid<bool>,
+    a: GridPoint,
+    b: GridPoint,
+    clearance: f64,
+) -> bool {
+    let len = (b.0 - a.0).hypot(b.1 - a.1);
+    let step = (clearance / 4.0).clamp(0.01, 0.1);
+    let n = (len / step).ceil().max(1.0) as usize;
+    (0..=n).all(|i| {
+        let t = i as f64 / n as f64;
+        point_clearance(
+            mask,
+            (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)),
+            clearance,
+        )
+    })
+}
+
+/// Whether `p` lies in a plannable cell and no non-plannable (or outside)
+/// cell square comes within `clearance` (< 1) cells of it.
+pub(crate) fn point_clearance(mask: &Grid<bool>, p: GridPoint, clearance: f64) -> bool {
+    let Some(cell) = cell_of(mask, p) else {
+        return false;
+    };
+    if !mask[cell] {
+        return false;
+    }
+    let (r, c) = (cell.row as i64, cell.col as i64);
+    for dr in -1..=1_i64 {
+        for dc in -1..=1_i64 {
+            let (rr, cc) = (r + dr, c + dc);
+            let inside =
+                rr >= 0 && cc >= 0 && (rr as usize) < mask.height() && (cc as usize) < mask.width();
+            if inside && mask[Cell::new(rr as usize, cc as usize)] {
+                continue;
+            }
+            // Distance from p to the square [cc, cc+1] × [rr, rr+1].
+            let dx = (cc as f64 - p.0).max(p.0 - (cc as f64 + 1.0)).max(0.0);
+            let dy = (rr as f64 - p.1).max(p.1 - (rr as f64 + 1.0)).max(0.0);
+            if dx * dx + dy * dy < clearance * clearance {
+                return false;
+            }
+        }
+    }
+    true
 }
 
 /// Clears `wanted` at representatives within `radius` of a sample of the

@@ -104,6 +104,7 @@ pub fn registry() -> &'static [&'static dyn Planner] {
         grid_cover::GridCover,
         optimal::Optimal,
         rect_priority::RectPriority,
+        smooth::Smooth,
         stc::{Stc, StcVariant},
         sweep::{Decomposition, Sweep},
     };
@@ -118,7 +119,8 @@ pub fn registry() -> &'static [&'static dyn Planner] {
     static BOUSTROPHEDON: Sweep = Sweep::new(Decomposition::Boustrophedon);
     static TRAPEZOIDAL: Sweep = Sweep::new(Decomposition::Trapezoidal);
     static BORDER: BorderExpansionPlanner = BorderExpansionPlanner;
-    static ALL: [&dyn Planner; 11] = [
+    static SMOOTH: Smooth = Smooth::new();
+    static ALL: [&dyn Planner; 12] = [
         &DTC,
         &FULL_DTC,
         &GRID_COVER,
@@ -130,6 +132,7 @@ pub fn registry() -> &'static [&'static dyn Planner] {
         &BOUSTROPHEDON,
         &TRAPEZOIDAL,
         &BORDER,
+        &SMOOTH,
     ];
     &ALL
 }

@@ -132,42 +132,47 @@ impl QuinticBezier {
     }
 }
 
-/// A C² spline through `points` (at least two): tangents by centred
-/// differences (one-sided at the ends), second derivatives by the second
-/// difference (zero at the ends), one segment per pair of points.
+/// The end derivatives [`spline_through`] uses at each of `points`:
+/// tangents by centred differences (one-sided at the ends) and second
+/// derivatives by the second difference (zero at the ends).
 #[must_use]
-pub fn spline_through(points: &[Vec2]) -> Vec<QuinticBezier> {
+pub fn spline_derivatives(points: &[Vec2]) -> (Vec<Vec2>, Vec<Vec2>) {
     let n = points.len();
     if n < 2 {
-        return Vec::new();
+        return (vec![(0.0, 0.0); n], vec![(0.0, 0.0); n]);
     }
-    let tangent = |i: usize| {
-        if i == 0 {
-            sub(points[1], points[0])
-        } else if i == n - 1 {
-            sub(points[n - 1], points[n - 2])
-        } else {
-            scale(sub(points[i + 1], points[i - 1]), 0.5)
-        }
-    };
-    let accel = |i: usize| {
-        if i == 0 || i == n - 1 {
-            (0.0, 0.0)
-        } else {
-            add(sub(points[i + 1], scale(points[i], 2.0)), points[i - 1])
-        }
-    };
-    (0..n - 1)
+    let tangents = (0..n)
         .map(|i| {
-            QuinticBezier::from_ends(
-                points[i],
-                points[i + 1],
-                tangent(i),
-                tangent(i + 1),
-                accel(i),
-                accel(i + 1),
-            )
+            if i == 0 {
+                sub(points[1], points[0])
+            } else if i == n - 1 {
+                sub(points[n - 1], points[n - 2])
+            } else {
+                scale(sub(points[i + 1], points[i - 1]), 0.5)
+            }
         })
+        .collect();
+    let accels = (0..n)
+        .map(|i| {
+            if i == 0 || i == n - 1 {
+                (0.0, 0.0)
+            } else {
+                add(sub(points[i + 1], scale(points[i], 2.0)), points[i - 1])
+            }
+        })
+        .collect();
+    (tangents, accels)
+}
+
+/// A C² spline through `points` (at least two), one segment per pair of
+/// points, with the derivatives of [`spline_derivatives`].
+#[must_use]
+pub fn spline_through(points: &[Vec2]) -> Vec<QuinticBezier> {
+    let (t, a) = spline_derivatives(points);
+    points
+        .windows(2)
+        .enumerate()
+        .map(|(i, w)| QuinticBezier::from_ends(w[0], w[1], t[i], t[i + 1], a[i], a[i + 1]))
         .collect()
 }
 

@@ -53,7 +53,7 @@ pub mod spiral;
 pub mod timing;
 pub mod wall_follow;
 
-pub use bezier::{QuinticBezier, spline_through};
+pub use bezier::{QuinticBezier, spline_derivatives, spline_through};
 pub use control::{Controller, Kanayama, Klancar, Reference, TrackingError};
 pub use energy::{EnergyModel, RobotSpec};
 pub use error::{Error, Result};
