@@ -67,6 +67,11 @@ impl<'a> PathBuilder<'a> {
         &self.points
     }
 
+    /// Drops the points after the first `len` (at least the start stays).
+    pub(crate) fn truncate(&mut self, len: usize) {
+        self.points.truncate(len.max(1));
+    }
+
     /// Appends `p` as it is (the caller has checked the piece).
     pub(crate) fn push(&mut self, p: GridPoint) {
         if self.last() != p {

@@ -21,20 +21,29 @@
 //!    - *tangents* from a local least-squares fit over ±2 neighbours;
 //!    - *path points*: each wall point moved along its normal into the
 //!      unexplored region by the covering reach less half a cell (pulled back
-//!      when that point lacks clearance); next to real walls the path point is
-//!      the wall point itself, i.e. **wall following** where the virtual path
-//!      meets an obstacle;
+//!      when that point lacks clearance); at cells touching a real wall
+//!      (8-neighbourhood) the path point is the wall point itself, i.e.
+//!      **wall following** where the virtual path meets an obstacle;
 //!    - *filtering*: of two consecutive path points whose connectors to their
 //!      wall points cross (Fig. 4), the second is dropped;
 //!    - *minimal covering set* (Fig. 5): greedily the farthest path point
 //!      whose straight connection keeps clearance and stays within covering
 //!      reach of every wall point in between;
-//!    - *quintic Bézier splines* through the chosen points (eq. 13, derivatives
-//!      of [`oxcover_robot::spline_derivatives`]);
+//!    - *quintic Bézier splines* through the chosen points (eq. 13 and its
+//!      control-point rules): at each point a tangent along the bisector of
+//!      its chords and the curvature of the circle through it and its
+//!      neighbours; each segment's end tangents have its chord's length and
+//!      its end second derivatives realise those curvatures, so the spline
+//!      is G² (curvature-continuous). The seed's uniform derivatives (our
+//!      [`oxcover_robot::spline_through`]) loop where points are unevenly
+//!      spaced, which the minimal covering set makes them;
 //!    - *PSO* (Algorithm 1, [`crate::pso`]) per interior point over
-//!      `x = (normal shift, tangent shift, tangent scale, acceleration scale)`,
-//!      each particle kept only while both adjacent segments keep clearance
-//!      and still cover their wall points (the covering range `R_i`).
+//!      `x = (normal shift, tangent rotation, tangent scale, curvature
+//!      scale)` (the slides do not say what their four elements are), each
+//!      particle kept only while both adjacent segments keep clearance and
+//!      still cover their wall points (the covering range `R_i`);
+//!    - a segment that still fails is driven with its tangents halved, then
+//!      quartered, then straight (the chord, which the covering set checked).
 //!
 //!    until CIDT finds no unexplored cell.
 //!
@@ -51,8 +60,9 @@
 //! **Overlap.** A cell counts as explored when a path sample passes within
 //! the covering reach `R = tool − margin` (margin: half a cell, at least 15 %
 //! of the tool radius), and a cell next to a wall only when the path passes
-//! within half a cell (so walls are followed, and the strip beyond them that
-//! only the tool reaches is covered). Lanes thus overlap by about the margin,
+//! within 0.85 of a cell (so walls are followed, and the strip beyond them that
+//! only the tool reaches is covered; 0.85 rather than ½ lets a straight line
+//! follow a wall drawn as a staircase of cells without zigzagging). Lanes thus overlap by about the margin,
 //! which is what keeps a tracked robot's coverage when it deviates; paths keep
 //! [`CLEARANCE`] cells from non-plannable cells for the same reason.
 //!
@@ -62,7 +72,7 @@
 use oxcover_distance::{BlockMap, CoarseToFine, Wavefront, cidt};
 use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_distance};
 use oxcover_grid::{Cell, Dir4, Grid};
-use oxcover_robot::{ArchimedeanSpiral, QuinticBezier, spline_derivatives};
+use oxcover_robot::{ArchimedeanSpiral, QuinticBezier};
 
 use crate::error::{Error, Result};
 use crate::metre_path::{PathBuilder, point_clearance, segment_clearance};
@@ -210,10 +220,15 @@ struct Run<'a> {
     builder: PathBuilder<'a>,
     /// Cells next to a wall (a non-plannable or outside 4-neighbour).
     wall: Grid<bool>,
+    /// Cells touching a wall (a non-plannable or outside 8-neighbour).
+    near_wall: Grid<bool>,
     /// Explored cells, with the unexplored ones as CFCIDT targets.
     blocks: BlockMap,
     explored: Grid<bool>,
     reach: f64,
+    /// Tool radius less the reach: how far the path may move from where it
+    /// explored cells and still cover them.
+    margin: f64,
     marked: usize,
     pieces: Vec<Piece>,
     pso: Pso,
@@ -233,20 +248,27 @@ impl<'a> Run<'a> {
                     .iter()
                     .any(|&d| !plannable.step(c, d).is_some_and(|n| plannable[n]))
         });
+        let near_wall = Grid::from_fn(plannable.width(), plannable.height(), |c| {
+            plannable[c]
+                && (plannable.neighbours8(c).count() < 8
+                    || plannable.neighbours8(c).any(|(_, n)| !plannable[n]))
+        });
         let mut blocks = BlockMap::new(plannable, input.coarse.block_size().max(4));
         for c in plannable.true_cells() {
             blocks.set_target(c, true);
         }
         let t = input.tool_cells;
-        let margin = (0.15 * t).max(0.5);
+        let margin = (0.12 * t).max(0.35);
         let reach = (t - margin).max(t.min(0.5));
         let mut run = Self {
             plannable,
             builder: PathBuilder::new(plannable, start).with_clearance(CLEARANCE),
             wall,
+            near_wall,
             blocks,
             explored: Grid::new(plannable.width(), plannable.height(), false),
             reach,
+            margin: t - reach,
             marked: 0,
             pieces: Vec::new(),
             pso,
@@ -266,6 +288,14 @@ impl<'a> Run<'a> {
 
     /// Records a piece from `from` to the current end and marks what it explored.
     fn close(&mut self, behaviour: Behaviour, from: usize) {
+        if behaviour != Behaviour::Spiral && self.len() > from + 2 {
+            let pts = self.builder.points()[from..].to_vec();
+            let rounded = fillet_corners(self.plannable, &pts, self.margin);
+            self.builder.truncate(from + 1);
+            for &q in &rounded[1..] {
+                self.builder.push(q);
+            }
+        }
         let end = self.len() - 1;
         if end > from {
             match self.pieces.last_mut() {
@@ -313,7 +343,7 @@ impl<'a> Run<'a> {
                 if !self.plannable[c] || self.explored[c] {
                     continue;
                 }
-                let need = if self.wall[c] { r.min(0.5) } else { r };
+                let need = if self.wall[c] { self.wall_reach() } else { r };
                 let (x, y) = cell_center(c);
                 if (x - p.0).hypot(y - p.1) <= need + 1e-9 {
                     self.explored[c] = true;
@@ -369,22 +399,19 @@ impl<'a> Run<'a> {
         let plannable = self.plannable;
         let mut loop_cells = trace(plannable, near.first(), |c| plannable[c]);
         loop_cells.push(near.first()); // back to where wall following began
-        let waypoints: Vec<Waypoint> = loop_cells
-            .iter()
-            .map(|&c| {
-                let u = cell_center(c);
-                Waypoint {
-                    p: u,
-                    u,
-                    tol: self.wall_tolerance(),
-                }
-            })
-            .collect();
+        let waypoints = self.waypoints(&loop_cells, true);
         self.drive(&waypoints, Behaviour::WallFollowing, false)
     }
 
+    /// How close the path must pass to a cell next to a wall to explore it:
+    /// 0.85 of a cell (so a wall drawn as a staircase of cells can
+    /// be followed along a straight line that keeps clearance), at most the reach.
+    fn wall_reach(&self) -> f64 {
+        self.reach.min(0.85)
+    }
+
     fn wall_tolerance(&self) -> f64 {
-        (self.reach.min(0.5) - 0.125).max(0.0)
+        (self.wall_reach() - 0.125).max(0.0)
     }
 
     /// Step 3: CFCIDT targets and virtual-wall paths until nothing is unexplored.
@@ -401,7 +428,7 @@ impl<'a> Run<'a> {
             let explored = &self.explored;
             let plannable = self.plannable;
             let boundary = trace(plannable, target, |c| plannable[c] && !explored[c]);
-            let waypoints = self.waypoints(&boundary);
+            let waypoints = self.waypoints(&boundary, false);
             let from = self.len() - 1;
             self.builder.follow(&found.path[1..], f64::INFINITY);
             self.close(Behaviour::Transit, from);
@@ -413,7 +440,7 @@ impl<'a> Run<'a> {
     }
 
     /// Path points for a traced boundary of the unexplored region.
-    fn waypoints(&self, boundary: &[Cell]) -> Vec<Waypoint> {
+    fn waypoints(&self, boundary: &[Cell], wall_loop: bool) -> Vec<Waypoint> {
         let n = boundary.len();
         let closed = n > 2 && boundary[0].manhattan(boundary[n - 1]) <= 1;
         let at = |i: isize| -> GridPoint {
@@ -425,22 +452,16 @@ impl<'a> Run<'a> {
             cell_center(boundary[j])
         };
         let offset = self.reach - 0.5;
+        let virtual_tol = (self.reach - 0.25).max(0.0);
+        let clear = |u: GridPoint, q: GridPoint| {
+            point_clearance(self.plannable, q, CLEARANCE)
+                && segment_clearance(self.plannable, u, q, CLEARANCE)
+        };
         let mut out: Vec<Waypoint> = Vec::with_capacity(n);
         for (i, &c) in boundary.iter().enumerate() {
             let u = cell_center(c);
-            if self.wall[c] || offset <= 0.0 {
-                out.push(Waypoint {
-                    p: u,
-                    u,
-                    tol: if self.wall[c] {
-                        self.wall_tolerance()
-                    } else {
-                        (self.reach - 0.25).max(0.0)
-                    },
-                });
-                continue;
-            }
-            // Least-squares tangent over ±2 neighbours; the unexplored side is on the left.
+            // Least-squares tangent over ±2 neighbours; the unexplored side
+            // (the free side, for a wall loop) is on the left.
             let mut t = (0.0, 0.0);
             for k in 1..=2_isize {
                 let (a, b) = (at(i as isize + k), at(i as isize - k));
@@ -448,14 +469,26 @@ impl<'a> Run<'a> {
                 t.1 += k as f64 * (a.1 - b.1);
             }
             let norm = t.0.hypot(t.1);
+            let normal = (norm > 1e-9).then(|| (t.1 / norm, -t.0 / norm));
+            if wall_loop || self.near_wall[c] || offset <= 0.0 {
+                // Wall following: through the cell.
+                let p = u;
+                out.push(Waypoint {
+                    p,
+                    u,
+                    tol: if self.wall[c] {
+                        self.wall_tolerance()
+                    } else {
+                        virtual_tol
+                    },
+                });
+                continue;
+            }
             let mut p = u;
-            if norm > 1e-9 {
-                let nrm = (t.1 / norm, -t.0 / norm);
+            if let Some(nrm) = normal {
                 for f in [1.0, 0.75, 0.5, 0.25] {
                     let q = (u.0 + nrm.0 * offset * f, u.1 + nrm.1 * offset * f);
-                    if point_clearance(self.plannable, q, CLEARANCE)
-                        && segment_clearance(self.plannable, u, q, CLEARANCE)
-                    {
+                    if clear(u, q) {
                         p = q;
                         break;
                     }
@@ -464,7 +497,7 @@ impl<'a> Run<'a> {
             let wp = Waypoint {
                 p,
                 u,
-                tol: (self.reach - 0.25).max(0.0),
+                tol: virtual_tol,
             };
             // Fig. 4: drop a path point whose connector crosses the previous one's.
             if let Some(prev) = out.last()
@@ -549,81 +582,61 @@ impl<'a> Run<'a> {
             }
             return;
         }
-        let (mut t, mut acc) = spline_derivatives(&pts);
-        let mut pts = pts;
-        // Wall points each segment answers for.
+        let mut spline = Spline::through(&pts);
+        // Wall points each segment answers for, and the unfiltered path points it replaces.
         let covers: Vec<&[Waypoint]> = run.windows(2).map(|w| &wps[w[0] + 1..=w[1]]).collect();
         let originals: Vec<Vec<GridPoint>> = run
             .windows(2)
             .map(|w| wps[w[0]..=w[1]].iter().map(|x| x.p).collect())
             .collect();
         let (plannable, reach) = (self.plannable, self.reach);
-        let ok = |pts: &[GridPoint], t: &[GridPoint], acc: &[GridPoint], i: usize| {
-            let seg =
-                QuinticBezier::from_ends(pts[i], pts[i + 1], t[i], t[i + 1], acc[i], acc[i + 1]);
+        let ok = |sp: &Spline, i: usize| {
+            let seg = sp.segment(i, 1.0);
             let samples = sample(&seg);
             curve_ok(plannable, &samples, covers[i])
                 .then(|| cost(&seg, &samples, &originals[i], reach))
         };
-        let good: Vec<bool> = (0..pts.len() - 1)
-            .map(|i| ok(&pts, &t, &acc, i).is_some())
-            .collect();
-        // PSO per interior point whose two segments are good.
+        // PSO per interior point whose two segments are good at the start.
         for i in 1..pts.len() - 1 {
-            if !(good[i - 1] && good[i]) {
+            if ok(&spline, i - 1).is_none() || ok(&spline, i).is_none() {
                 continue;
             }
-            let (p0, t0, a0) = (pts[i], t[i], acc[i]);
-            let tn = t0.0.hypot(t0.1);
-            if tn < 1e-9 {
-                continue;
-            }
-            let (ux, uy) = (t0.0 / tn, t0.1 / tn);
-            let apply = |x: &[f64; 4],
-                         pts: &mut [GridPoint],
-                         t: &mut [GridPoint],
-                         acc: &mut [GridPoint]| {
-                pts[i] = (p0.0 + x[0] * uy + x[1] * ux, p0.1 - x[0] * ux + x[1] * uy);
-                t[i] = (t0.0 * (1.0 + x[2]), t0.1 * (1.0 + x[2]));
-                acc[i] = (a0.0 * (1.0 + x[3]), a0.1 * (1.0 + x[3]));
-            };
+            let base = spline.clone();
+            let mut trial = spline.clone();
             let s = 0.5 * self.reach.max(0.5);
-            let (mut pp, mut tt, mut aa) = (pts.clone(), t.clone(), acc.clone());
             let result = self.pso.minimise(
                 [0.0; 4],
-                [-s, -s, -0.5, -1.0],
-                [s, s, 0.5, 1.0],
+                [-s, -0.3, -0.6, -1.0],
+                [s, 0.3, 0.4, 1.0],
                 self.seed ^ ((self.iterations as u64) << 20) ^ (i as u64),
                 |x| {
-                    apply(x, &mut pp, &mut tt, &mut aa);
-                    Some(ok(&pp, &tt, &aa, i - 1)? + ok(&pp, &tt, &aa, i)?)
+                    trial.adjust(&base, i, x);
+                    Some(ok(&trial, i - 1)? + ok(&trial, i)?)
                 },
             );
             if let Some(r) = result {
                 self.pso_cost.0 += r.start_cost;
                 self.pso_cost.1 += r.cost;
-                apply(&r.x, &mut pts, &mut t, &mut acc);
+                spline.adjust(&base, i, &r.x);
             }
         }
-        for i in 0..pts.len() - 1 {
-            if ok(&pts, &t, &acc, i).is_some() {
+        // Drive: each segment as the spline, or with shorter tangents, or straight.
+        for (i, cover) in covers.iter().enumerate() {
+            let curve = [1.0, 0.5, 0.25].into_iter().find_map(|k| {
+                let seg = spline.segment(i, k);
+                let samples = sample(&seg);
+                curve_ok(plannable, &samples, cover).then_some(samples)
+            });
+            if let Some(samples) = curve {
                 self.curved += 1;
-                let seg = QuinticBezier::from_ends(
-                    pts[i],
-                    pts[i + 1],
-                    t[i],
-                    t[i + 1],
-                    acc[i],
-                    acc[i + 1],
-                );
-                for q in sample(&seg).into_iter().skip(1) {
+                for q in samples.into_iter().skip(1) {
                     self.builder.push(q);
                 }
             } else {
                 // The chord between the unmoved ends is known good; PSO may
                 // have moved an end, so check and route if needed.
                 self.straight += 1;
-                let q = pts[i + 1];
+                let q = spline.points[i + 1];
                 if self.builder.clear(self.builder.last(), q) {
                     self.builder.push(q);
                 } else {
@@ -631,6 +644,91 @@ impl<'a> Run<'a> {
                 }
             }
         }
+    }
+}
+
+/// A G²-continuous spline of quintic Bézier segments through points: at each
+/// point a unit tangent (the direction from the previous to the next point)
+/// and a curvature (of the circle through the point and its neighbours; 0 at
+/// the ends); a segment's end tangents have its chord's length, and its end
+/// second derivatives give the points' curvatures. Unlike uniform
+/// (Catmull–Rom) tangents, chord-length tangents do not loop where points are
+/// unevenly spaced.
+#[derive(Clone, Debug)]
+struct Spline {
+    points: Vec<GridPoint>,
+    /// Tangent angle at each point.
+    angle: Vec<f64>,
+    /// Tangent length factor at each point.
+    scale: Vec<f64>,
+    /// Signed curvature at each point.
+    kappa: Vec<f64>,
+}
+
+impl Spline {
+    fn through(points: &[GridPoint]) -> Self {
+        let n = points.len();
+        let dir = |a: GridPoint, b: GridPoint| (b.1 - a.1).atan2(b.0 - a.0);
+        let angle = (0..n)
+            .map(|i| {
+                if i == 0 {
+                    dir(points[0], points[1])
+                } else if i == n - 1 {
+                    dir(points[n - 2], points[n - 1])
+                } else {
+                    // Unit directions of both chords, summed (bisector).
+                    let (a, b) = (dir(points[i - 1], points[i]), dir(points[i], points[i + 1]));
+                    (a.sin() + b.sin()).atan2(a.cos() + b.cos())
+                }
+            })
+            .collect();
+        let kappa = (0..n)
+            .map(|i| {
+                if i == 0 || i == n - 1 {
+                    return 0.0;
+                }
+                let (a, b, c) = (points[i - 1], points[i], points[i + 1]);
+                let cross = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
+                let d = (b.0 - a.0).hypot(b.1 - a.1)
+                    * (c.0 - b.0).hypot(c.1 - b.1)
+                    * (c.0 - a.0).hypot(c.1 - a.1);
+                if d > 1e-12 { 2.0 * cross / d } else { 0.0 }
+            })
+            .collect();
+        Self {
+            points: points.to_vec(),
+            angle,
+            scale: vec![1.0; n],
+            kappa,
+        }
+    }
+
+    /// Segment `i` with its tangents shortened by `k` (1 = the spline's).
+    fn segment(&self, i: usize, k: f64) -> QuinticBezier {
+        let (p0, p1) = (self.points[i], self.points[i + 1]);
+        let chord = (p1.0 - p0.0).hypot(p1.1 - p0.1);
+        let end = |j: usize| {
+            let len = chord * self.scale[j] * k;
+            let (sin, cos) = self.angle[j].sin_cos();
+            // Curvature κ needs a normal second derivative κ·|T|²; keep
+            // |κ|·chord ≤ 2 so a sharp point cannot make the segment loop.
+            let kap = self.kappa[j].clamp(-2.0 / chord.max(1e-9), 2.0 / chord.max(1e-9));
+            let a = kap * len * len;
+            ((len * cos, len * sin), (-a * sin, a * cos))
+        };
+        let ((t0, a0), (t1, a1)) = (end(i), end(i + 1));
+        QuinticBezier::from_ends(p0, p1, t0, t1, a0, a1)
+    }
+
+    /// Point `i` of `base` adjusted by the PSO position
+    /// `x = (normal shift, tangent rotation, tangent scale − 1, curvature scale − 1)`.
+    fn adjust(&mut self, base: &Spline, i: usize, x: &[f64; 4]) {
+        let (sin, cos) = base.angle[i].sin_cos();
+        let p = base.points[i];
+        self.points[i] = (p.0 - x[0] * sin, p.1 + x[0] * cos);
+        self.angle[i] = base.angle[i] + x[1];
+        self.scale[i] = base.scale[i] * (1.0 + x[2]);
+        self.kappa[i] = base.kappa[i] * (1.0 + x[3]);
     }
 }
 
@@ -678,6 +776,80 @@ fn cost(seg: &QuinticBezier, samples: &[GridPoint], originals: &[GridPoint], rea
         .sum();
     let r = reach.max(0.5);
     length + r * r * bending + gap / r
+}
+
+/// Largest turn (rad) the time law drives through without stopping; sharper
+/// vertices are rounded when they can be.
+const GENTLE: f64 = 0.33;
+
+/// Rounds the sharp vertices of a polyline by quintic Bézier fillets
+/// (tangent to both segments, zero curvature at both ends, so G²), each as
+/// wide as clearance allows, up to 3 cells along either segment (and half of
+/// it), and no farther than `margin` cells from any point of the corner it
+/// replaces (so what the corner covered with the reach, the fillet covers
+/// with the tool). Sharp corners are where a tracked robot stops and turns in
+/// place; a fillet is driven through.
+fn fillet_corners(plannable: &Grid<bool>, pts: &[GridPoint], margin: f64) -> Vec<GridPoint> {
+    let mut out = vec![pts[0]];
+    if margin <= 0.0 {
+        out.extend_from_slice(&pts[1..]);
+        return out;
+    }
+    let unit = |a: GridPoint, b: GridPoint| {
+        let l = (b.0 - a.0).hypot(b.1 - a.1);
+        ((b.0 - a.0) / l, (b.1 - a.1) / l, l)
+    };
+    for i in 1..pts.len() - 1 {
+        let (prev, p, next) = (*out.last().expect("a point"), pts[i], pts[i + 1]);
+        let (ux, uy, lin) = unit(prev, p);
+        let (vx, vy, lout) = unit(p, next);
+        let turn = (ux * vy - uy * vx).atan2(ux * vx + uy * vy).abs();
+        if !(lin > 1e-9 && lout > 1e-9) || turn <= GENTLE {
+            out.push(p);
+            continue;
+        }
+        let mut d = (0.5 * lin).min(0.5 * lout).min(3.0);
+        let mut done = false;
+        while d >= 0.05 {
+            let a = (p.0 - d * ux, p.1 - d * uy);
+            let b = (p.0 + d * vx, p.1 + d * vy);
+            let l = (b.0 - a.0).hypot(b.1 - a.1);
+            let seg = QuinticBezier::from_ends(
+                a,
+                b,
+                (l * ux, l * uy),
+                (l * vx, l * vy),
+                (0.0, 0.0),
+                (0.0, 0.0),
+            );
+            let samples = seg.sample(((2.0 * d) / 0.25).max(turn / 0.08).ceil().max(4.0) as usize);
+            let near = |q: GridPoint| {
+                samples
+                    .windows(2)
+                    .any(|s| segment_distance(s[0], s[1], q) <= margin)
+            };
+            let corner_covered = (0..=8).all(|k| {
+                let t = k as f64 / 8.0;
+                near((a.0 + t * (p.0 - a.0), a.1 + t * (p.1 - a.1)))
+                    && near((p.0 + t * (b.0 - p.0), p.1 + t * (b.1 - p.1)))
+            });
+            if corner_covered
+                && samples
+                    .windows(2)
+                    .all(|s| segment_clearance(plannable, s[0], s[1], CLEARANCE))
+            {
+                out.extend_from_slice(&samples);
+                done = true;
+                break;
+            }
+            d /= 2.0;
+        }
+        if !done {
+            out.push(p);
+        }
+    }
+    out.push(pts[pts.len() - 1]);
+    out
 }
 
 /// Whether segments `a1 a2` and `b1 b2` cross properly.

@@ -3,12 +3,15 @@
 //!
 //! Each interior vertex turns the heading by `φ`. A sharp corner
 //! (`φ > corner_angle`) is a stop: the robot brakes to rest, turns in place
-//! at the turn-rate limit, and drives on. A gentle vertex belongs to a smooth
+//! (a trapezoidal turn-rate profile under `alpha_max` and `omega_max`), and
+//! drives on. A gentle vertex belongs to a smooth
 //! curve: its curvature is estimated as `κ = φ / ((l₀ + l₁)/2)` from the two
 //! segment lengths, and the speed there is capped at `ω_max / κ`, so densely
 //! sampled curves are driven at the speed their curvature allows and sharp
 //! turns are slowed to a stop; a segment between two curve vertices keeps the
-//! lower of their speeds along its whole length. Speeds at the vertices then obey the
+//! lower of their speeds along its whole length, and no more than
+//! `sqrt(alpha_max · l / |Δκ|)` where the curvature changes by `Δκ` over it
+//! (the turn rate must follow). Speeds at the vertices then obey the
 //! acceleration limit by a forward and a backward pass (`v₁² ≤ v₀² + 2 a l`),
 //! and every segment is driven with a trapezoidal (or triangular) speed
 //! profile between its end speeds. Through a gentle vertex the reference
@@ -34,18 +37,21 @@ pub struct Limits {
     pub a_max: f64,
     /// Top turn rate (rad/s), in place and along curves.
     pub omega_max: f64,
+    /// Angular acceleration of turns in place (rad/s²).
+    pub alpha_max: f64,
     /// Heading changes above this (rad) are corners: stop and turn in place.
     pub corner_angle: f64,
 }
 
 impl Default for Limits {
-    /// The contract's estimate speeds (0.3 m/s, 0.52 rad/s), 0.5 m/s², and
-    /// corners above 20°.
+    /// The contract's estimate speeds (0.3 m/s, 0.52 rad/s), 0.5 m/s²,
+    /// 3 rad/s², and corners above 20°.
     fn default() -> Self {
         Self {
             v_max: 0.3,
             a_max: 0.5,
             omega_max: 0.52,
+            alpha_max: 3.0,
             corner_angle: 20f64.to_radians(),
         }
     }
@@ -61,6 +67,7 @@ impl Limits {
             v_max: positive("v_max", self.v_max)?,
             a_max: positive("a_max", self.a_max)?,
             omega_max: positive("omega_max", self.omega_max)?,
+            alpha_max: positive("alpha_max", self.alpha_max)?,
             corner_angle: positive("corner_angle", self.corner_angle)?,
         })
     }
@@ -84,7 +91,7 @@ enum Piece {
         peak: f64,
         duration: f64,
     },
-    /// A turn in place at `at`, by `angle` (signed), at the turn-rate limit.
+    /// A turn in place at `at`, by `angle` (signed), trapezoidal in rate.
     Turn { at: Pose, angle: f64, duration: f64 },
 }
 
@@ -93,6 +100,35 @@ impl Piece {
         match *self {
             Self::Drive { duration, .. } | Self::Turn { duration, .. } => duration,
         }
+    }
+}
+
+/// Top turn rate reached turning in place by `phi` (a triangle when short).
+fn turn_peak(phi: f64, l: &Limits) -> f64 {
+    (phi * l.alpha_max).sqrt().min(l.omega_max)
+}
+
+/// Duration of a turn in place by `phi ≥ 0`: a trapezoidal rate profile.
+fn turn_duration(phi: f64, l: &Limits) -> f64 {
+    let w = turn_peak(phi, l);
+    if w <= 0.0 {
+        return 0.0;
+    }
+    phi / w + w / l.alpha_max
+}
+
+/// Angle turned and turn rate at time `t` of a turn by `phi ≥ 0` lasting `duration`.
+fn turn_profile(phi: f64, t: f64, duration: f64, l: &Limits) -> (f64, f64) {
+    let w = turn_peak(phi, l);
+    let ramp = w / l.alpha_max;
+    let t = t.clamp(0.0, duration);
+    if t < ramp {
+        (l.alpha_max * t * t / 2.0, l.alpha_max * t)
+    } else if t <= duration - ramp {
+        (w * ramp / 2.0 + w * (t - ramp), w)
+    } else {
+        let r = duration - t;
+        (phi - l.alpha_max * r * r / 2.0, l.alpha_max * r)
     }
 }
 
@@ -155,8 +191,27 @@ impl Timing {
                 cap[i]
             }
         };
+        // Signed curvature at gentle vertices (0 at corners and ends); along a
+        // segment the turn rate changes by `v² Δκ / l`, so the speed there
+        // is capped at `sqrt(alpha_max · l / |Δκ|)` (S-bends and curvature
+        // jumps are driven slowly enough for the turn rate to follow).
+        let kappa = |i: usize| {
+            if i == 0 || i == segs.len() || turn[i].abs() > limits.corner_angle {
+                0.0
+            } else {
+                turn[i] / ((segs[i - 1].0 + segs[i].0) / 2.0)
+            }
+        };
         let seg_cap: Vec<f64> = (0..segs.len())
-            .map(|i| curve(i).min(curve(i + 1)))
+            .map(|i| {
+                let dk = (kappa(i + 1) - kappa(i)).abs();
+                let jerk = if dk > 1e-12 {
+                    (limits.alpha_max * segs[i].0 / dk).sqrt()
+                } else {
+                    f64::INFINITY
+                };
+                curve(i).min(curve(i + 1)).min(jerk)
+            })
             .collect();
         for i in 0..segs.len() {
             cap[i] = cap[i].min(seg_cap[i]);
@@ -184,7 +239,7 @@ impl Timing {
                 pieces.push(Piece::Turn {
                     at: Pose::new(pts[i].0, pts[i].1, segs[i - 1].1),
                     angle: turn[i],
-                    duration: turn[i].abs() / limits.omega_max,
+                    duration: turn_duration(turn[i].abs(), &limits),
                 });
             }
             let (v0, v1, a) = (cap[i], cap[i + 1], limits.a_max);
@@ -254,20 +309,11 @@ impl Timing {
                 angle,
                 duration,
             } => {
-                let f = if duration > 0.0 {
-                    local / duration
-                } else {
-                    1.0
-                };
-                let moving = local < duration;
+                let (turned, rate) = turn_profile(angle.abs(), local, duration, &self.limits);
                 Reference {
-                    pose: Pose::new(at.x, at.y, wrap_angle(at.theta + f * angle)),
+                    pose: Pose::new(at.x, at.y, wrap_angle(at.theta + angle.signum() * turned)),
                     v: 0.0,
-                    omega: if moving {
-                        angle.signum() * self.limits.omega_max
-                    } else {
-                        0.0
-                    },
+                    omega: angle.signum() * rate,
                 }
             }
             Piece::Drive {
@@ -349,17 +395,44 @@ mod tests {
         let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.0, 0.0)];
         let t = Timing::new(&square, l).unwrap();
         let side = 1.0 / 0.3 + 0.3 / 0.5;
-        let want = 4.0 * side + 3.0 * FRAC_PI_2 / 0.52;
+        // Each turn: π/2 at 0.52 rad/s plus one ramp of 0.52/3 s.
+        let turn = FRAC_PI_2 / 0.52 + 0.52 / 3.0;
+        let want = 4.0 * side + 3.0 * turn;
         assert!(
             (t.duration() - want).abs() < 1e-9,
             "{} vs {want}",
             t.duration()
         );
         // Halfway through the first turn: at the corner, at rest, turning.
-        let r = t.at(side + FRAC_PI_2 / 0.52 / 2.0);
+        let r = t.at(side + turn / 2.0);
         assert!((r.pose.x - 1.0).abs() < 1e-12 && r.pose.y.abs() < 1e-12);
         assert!(r.v == 0.0 && (r.omega - 0.52).abs() < 1e-12);
         assert!((r.pose.theta - PI / 4.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn turns_ramp_their_rate_within_alpha() {
+        let l = Limits {
+            omega_max: 1.5,
+            ..Limits::default()
+        };
+        // A half turn: ramps of 0.5 s at 3 rad/s², then 1.5 rad/s.
+        let t = Timing::new(&[(0.0, 0.0), (1.0, 0.0), (0.0, 0.0)], l).unwrap();
+        let side = 1.0 / 0.3 + 0.3 / 0.5;
+        let dur = PI / 1.5 + 0.5;
+        assert!((t.duration() - (2.0 * side + dur)).abs() < 1e-9);
+        let n = 1000;
+        let mut prev = t.at(side);
+        for k in 1..=n {
+            let r = t.at(side + dur * k as f64 / n as f64);
+            let dt = dur / n as f64;
+            assert!((r.omega - prev.omega).abs() <= 3.0 * dt + 1e-9);
+            assert!(r.omega <= 1.5 + 1e-12 && r.v == 0.0);
+            prev = r;
+        }
+        assert!((t.at(side + dur).pose.theta.abs() - PI).abs() < 1e-9);
+        // A small corner never reaches the top rate: a triangle of 2·sqrt(φ/α).
+        assert!((turn_duration(0.3, &l) - 2.0 * (0.3f64 / 3.0).sqrt()).abs() < 1e-12);
     }
 
     #[test]
@@ -389,7 +462,10 @@ mod tests {
             let r = t.at(time);
             assert!(wrap_angle(r.pose.theta - prev.pose.theta).abs() < 0.02);
             if r.v > 0.1 {
-                assert!((r.omega - r.v / 0.25).abs() < 0.01 * r.v / 0.25 + 1e-3, "{r:?}");
+                assert!(
+                    (r.omega - r.v / 0.25).abs() < 0.01 * r.v / 0.25 + 1e-3,
+                    "{r:?}"
+                );
             }
             prev = r;
         }

@@ -3,6 +3,7 @@
 //! an SVG figure, the exact command, and a discussion of differences).
 
 mod decomposition_figure;
+pub mod lee2011;
 pub mod pavlicek2002;
 pub mod siamantas2010;
 pub mod zhang2008;
@@ -17,9 +18,10 @@ pub fn run(name: &str) -> anyhow::Result<()> {
         "zhang2008" => zhang2008::run(),
         "pavlicek2002" => pavlicek2002::run(),
         "floorplans" => pavlicek2002::run_floorplans(),
+        "lee2011" => lee2011::run(),
         other => {
             anyhow::bail!(
-                "no experiment named `{other}`: expected siamantas2010, zhang2008, pavlicek2002 or floorplans"
+                "no experiment named `{other}`: expected siamantas2010, siamantas2010-tracking, zhang2008, pavlicek2002, floorplans or lee2011"
             )
         }
     }

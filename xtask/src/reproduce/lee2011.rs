@@ -1,0 +1,583 @@
+//! Lee, Baek, Choi & Oh 2011 (seed 002): smooth coverage against BSA and
+//! Spiral-STC, executed in closed loop.
+//!
+//! Three 6 m × 5 m rooms with irregular obstacles, described in
+//! `fixtures/worlds/lee2011/*.ron` and rasterised here to ROS maps in
+//! `fixtures/maps/lee2011/` (0.05 m cells, a one-cell wall around). The
+//! robot is the bundled floor cleaner (`fixtures/robots/floor_cleaner.ron`),
+//! a 0.17 m body radius and a 0.16 m brush radius. Ten seeded starts per
+//! room, the same for every planner; each plan (no boundary pass: the
+//! planners as published) is timed, tracked by the Klancar controller and
+//! driven by the differential-drive model, and the EXECUTED trajectory is
+//! scored with the contract's metrics.
+//!
+//! The seed's four quantities: coverage (% of the coverable area),
+//! normalized time to coverage (run time / covered area, s/m²), average
+//! velocity (executed length / run time, cm/s) and energy efficiency
+//! (covered area / energy, m²/kJ).
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use oxcover::closed_loop::{ClosedLoop, ControllerKind, Run, execute};
+use oxcover::planner::{PlanRequest, plan};
+use oxcover::render::{Scene, render_to_file};
+use oxcover::report::metric_rows;
+use oxcover_grid::components::components4;
+use oxcover_grid::{Cell, Coverability, DiscRobot, Grid, Occupancy, OccupancyGrid, Point};
+use oxcover_robot::{Limits, RobotSpec};
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+use serde::Deserialize;
+
+use super::dir;
+
+/// Planners compared, in the seed's table order (the proposed one last).
+/// The seed's "STC" loses the partly blocked mega-cells (its 84 %), which is
+/// our plain `stc`; the issue asks for Spiral-STC, so both are run.
+pub const PLANNERS: [&str; 4] = ["bsa", "stc", "spiral-stc", "smooth"];
+/// Starts per environment.
+pub const STARTS: usize = 10;
+/// Robot body radius (m).
+pub const ROBOT_RADIUS: f64 = 0.17;
+/// Brush (tool) radius (m).
+pub const TOOL_RADIUS: f64 = 0.16;
+
+/// The reference limits of the runs: the cleaner's cruise speed and a turn
+/// rate a third of what its wheels allow (4.2 rad/s at 0.5 m/s wheel speed).
+#[must_use]
+pub fn limits() -> Limits {
+    Limits {
+        v_max: 0.3,
+        a_max: 0.5,
+        omega_max: 1.5,
+        alpha_max: 3.0,
+        corner_angle: 20f64.to_radians(),
+    }
+}
+
+/// The seed's table: (algorithm, coverage %, s/m², cm/s, m²/kJ), mean and std.
+pub const PAPER: [(&str, [(f64, f64); 4]); 3] = [
+    (
+        "BSA",
+        [(94.8, 0.7), (29.6, 5.4), (11.8, 2.9), (0.344, 0.074)],
+    ),
+    (
+        "STC",
+        [(84.3, 7.3), (28.2, 5.1), (13.2, 2.6), (0.360, 0.074)],
+    ),
+    (
+        "Proposed",
+        [(96.3, 0.7), (20.5, 1.6), (17.9, 1.1), (0.480, 0.036)],
+    ),
+];
+
+/// An obstacle of a world file.
+#[derive(Clone, Debug, Deserialize)]
+pub enum Shape {
+    /// A simple polygon (vertices in order, convex or not).
+    Polygon(Vec<(f64, f64)>),
+    /// A disc.
+    Circle {
+        /// Centre (m).
+        centre: (f64, f64),
+        /// Radius (m).
+        radius: f64,
+    },
+    /// A rotated rectangle.
+    Rect {
+        /// Centre (m).
+        centre: (f64, f64),
+        /// Side lengths (m).
+        size: (f64, f64),
+        /// Rotation, counter-clockwise (degrees).
+        angle_deg: f64,
+    },
+}
+
+impl Shape {
+    /// Whether `p` lies inside.
+    #[must_use]
+    pub fn contains(&self, p: (f64, f64)) -> bool {
+        match self {
+            Self::Polygon(v) => inside_polygon(v, p),
+            Self::Circle { centre, radius } => (p.0 - centre.0).hypot(p.1 - centre.1) <= *radius,
+            Self::Rect {
+                centre,
+                size,
+                angle_deg,
+            } => {
+                let (s, c) = angle_deg.to_radians().sin_cos();
+                let (dx, dy) = (p.0 - centre.0, p.1 - centre.1);
+                let (u, v) = (c * dx + s * dy, -s * dx + c * dy);
+                u.abs() <= size.0 / 2.0 && v.abs() <= size.1 / 2.0
+            }
+        }
+    }
+}
+
+/// Even-odd rule.
+fn inside_polygon(v: &[(f64, f64)], p: (f64, f64)) -> bool {
+    let mut inside = false;
+    let n = v.len();
+    for i in 0..n {
+        let (a, b) = (v[i], v[(i + n - 1) % n]);
+        if (a.1 > p.1) != (b.1 > p.1) && p.0 < (b.0 - a.0) * (p.1 - a.1) / (b.1 - a.1) + a.0 {
+            inside = !inside;
+        }
+    }
+    inside
+}
+
+/// A test environment (a world file).
+#[derive(Clone, Debug, Deserialize)]
+pub struct World {
+    /// Name.
+    pub name: String,
+    /// Inner width (m).
+    pub width: f64,
+    /// Inner height (m).
+    pub height: f64,
+    /// Map resolution (m/cell).
+    pub resolution: f64,
+    /// Obstacles.
+    pub obstacles: Vec<Shape>,
+}
+
+impl World {
+    /// Reads a world file.
+    ///
+    /// # Errors
+    /// Unreadable or malformed files.
+    pub fn read(path: &Path) -> anyhow::Result<Self> {
+        let text = std::fs::read_to_string(path)?;
+        ron::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
+    }
+
+    /// The occupancy grid: a cell is occupied when its centre lies in an
+    /// obstacle or outside the room; one cell of wall all round.
+    #[must_use]
+    pub fn rasterise(&self) -> OccupancyGrid {
+        let r = self.resolution;
+        let w = (self.width / r).round() as usize + 2;
+        let h = (self.height / r).round() as usize + 2;
+        let mut map = OccupancyGrid::new(Grid::new(w, h, Occupancy::Free), r, Point::new(-r, -r));
+        let frame = *map.frame();
+        for cell in Grid::<()>::new(w, h, ()).cells() {
+            let c = frame.cell_center(cell);
+            let p = (c.x, c.y);
+            let outside = p.0 < 0.0 || p.1 < 0.0 || p.0 > self.width || p.1 > self.height;
+            if outside || self.obstacles.iter().any(|s| s.contains(p)) {
+                map.cells_mut()[cell] = Occupancy::Occupied;
+            }
+        }
+        map
+    }
+}
+
+/// Writes `map` as a ROS map (P5 PGM, 0 occupied / 254 free, and its yaml).
+///
+/// # Errors
+/// File writes.
+pub fn write_ros_map(map: &OccupancyGrid, pgm: &Path) -> anyhow::Result<()> {
+    let (w, h) = (map.width(), map.height());
+    let mut bytes = format!("P5\n{w} {h}\n255\n").into_bytes();
+    bytes.extend(map.cells().as_slice().iter().map(|o| match o {
+        Occupancy::Free => 254u8,
+        Occupancy::Occupied => 0,
+        Occupancy::Unknown => 205,
+    }));
+    std::fs::write(pgm, bytes)?;
+    let f = map.frame();
+    let yaml = format!(
+        "image: {}\nresolution: {}\norigin: [{}, {}, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
+        pgm.file_name()
+            .and_then(|n| n.to_str())
+            .unwrap_or("map.pgm"),
+        map.resolution(),
+        f.cell_center(Cell::new(h - 1, 0)).x - map.resolution() / 2.0,
+        f.cell_center(Cell::new(h - 1, 0)).y - map.resolution() / 2.0,
+    );
+    std::fs::write(pgm.with_extension("yaml"), yaml)?;
+    Ok(())
+}
+
+/// The environments: world files in name order.
+///
+/// # Errors
+/// Missing or malformed world files.
+pub fn worlds() -> anyhow::Result<Vec<World>> {
+    let d = crate::root().join("fixtures/worlds/lee2011");
+    let mut files: Vec<PathBuf> = crate::map_files(&d, &["ron"]);
+    files.sort();
+    files.iter().map(|f| World::read(f)).collect()
+}
+
+/// The robot disc.
+///
+/// # Panics
+/// Never: the radii are valid constants.
+#[must_use]
+pub fn robot() -> DiscRobot {
+    DiscRobot::new(ROBOT_RADIUS, TOOL_RADIUS).expect("valid radii")
+}
+
+/// Seeded starts: admissible cell centres of the largest admissible region.
+///
+/// # Errors
+/// A map with no admissible cell.
+pub fn starts(map: &OccupancyGrid, env: usize) -> anyhow::Result<Vec<Point>> {
+    let probe = Coverability::new(map, robot(), None)?;
+    let comps = components4(&probe.admissible);
+    let big = comps
+        .largest()
+        .ok_or_else(|| anyhow::anyhow!("no admissible cell"))?;
+    let cells: Vec<Cell> = probe
+        .admissible
+        .true_cells()
+        .filter(|&c| comps.labels[c] == big)
+        .collect();
+    let mut rng = ChaCha8Rng::seed_from_u64(2_011_000 + env as u64);
+    Ok((0..STARTS)
+        .map(|_| {
+            map.frame()
+                .cell_center(cells[rng.random_range(0..cells.len())])
+        })
+        .collect())
+}
+
+/// What the smooth planner did on one start (its own account).
+#[derive(Clone, Debug)]
+pub struct SmoothDetails {
+    /// Environment index.
+    pub env: usize,
+    /// CIDT iterations (virtual-wall paths).
+    pub iterations: usize,
+    /// Path length by behaviour (m): spiral, wall following, transit, virtual wall.
+    pub lengths: [f64; 4],
+    /// Bézier segments driven curved / straight.
+    pub segments: (usize, usize),
+    /// Summed PSO cost before and after.
+    pub pso: (f64, f64),
+}
+
+/// Plans `smooth` from `start` and tallies its behaviours.
+///
+/// # Errors
+/// Planner failures.
+pub fn smooth_details(
+    map: &OccupancyGrid,
+    env: usize,
+    start: Point,
+) -> anyhow::Result<SmoothDetails> {
+    use oxcover_planners::smooth::{Behaviour, Smooth};
+    let problem = Coverability::new(map, robot(), Some(start))?;
+    let k = oxcover::planner::coarse_block(&robot(), map.resolution());
+    let coarse = oxcover_grid::CoarseGrid::new(&problem.reachable, k);
+    let input = oxcover_planners::PlannerInput {
+        plannable: &problem.reachable,
+        coarse: &coarse,
+        start: coarse.coarse_of(problem.start),
+        seed: 0,
+        frame: *map.frame(),
+        tool_cells: TOOL_RADIUS / map.resolution(),
+    };
+    let d = Smooth::new().plan_detailed(&input)?;
+    let mut lengths = [0.0; 4];
+    for piece in &d.pieces {
+        let slot = match piece.behaviour {
+            Behaviour::Spiral => 0,
+            Behaviour::WallFollowing => 1,
+            Behaviour::Transit => 2,
+            Behaviour::VirtualWall => 3,
+        };
+        lengths[slot] += d.points[piece.start..=piece.end]
+            .windows(2)
+            .map(|w| (w[1].x - w[0].x).hypot(w[1].y - w[0].y))
+            .sum::<f64>();
+    }
+    Ok(SmoothDetails {
+        env,
+        iterations: d.iterations,
+        lengths,
+        segments: (d.curved_segments, d.straight_segments),
+        pso: d.pso_cost,
+    })
+}
+
+/// One executed run.
+#[derive(Clone, Debug)]
+pub struct Measured {
+    /// Environment index.
+    pub env: usize,
+    /// Start index.
+    pub start: usize,
+    /// Planner.
+    pub planner: &'static str,
+    /// Coverage (%).
+    pub coverage: f64,
+    /// Run time / covered area (s/m²).
+    pub normalized_time: f64,
+    /// Executed length / run time (cm/s).
+    pub velocity: f64,
+    /// Covered area / energy (m²/kJ).
+    pub efficiency: f64,
+    /// Samples in non-admissible cells.
+    pub collisions: usize,
+    /// Tracking errors (m).
+    pub tracking: (f64, f64),
+    /// Run time (s), executed length (m), energy (kJ).
+    pub totals: (f64, f64, f64),
+}
+
+/// The closed-loop configuration of every run.
+///
+/// # Errors
+/// A broken bundled robot file.
+pub fn closed_loop() -> anyhow::Result<ClosedLoop> {
+    let spec = RobotSpec::from_ron(&std::fs::read_to_string(
+        crate::root().join("fixtures/robots/floor_cleaner.ron"),
+    )?)?;
+    Ok(ClosedLoop {
+        spec,
+        controller: ControllerKind::Klancar,
+        limits: limits(),
+        dt: 0.02,
+        odometry_noise: 0.0,
+        seed: 0,
+    })
+}
+
+/// Plans and executes one run; returns the measurements, the plan and the run.
+///
+/// # Errors
+/// Planner or simulation failures.
+pub fn run_one(
+    map: &OccupancyGrid,
+    env: usize,
+    start_index: usize,
+    start: Point,
+    planner: &'static str,
+    cfg: &ClosedLoop,
+) -> anyhow::Result<(Measured, Vec<Point>, Run)> {
+    let mut req = PlanRequest::new(planner, map.resolution());
+    req.robot = robot();
+    req.start = Some(start);
+    req.seed = start_index as u64;
+    req.boundary_pass = false;
+    let planned = plan(map, &req)?;
+    let run = execute(map, robot(), &planned.points, cfg)?;
+    let m = &run.evaluation.metrics;
+    let last = run
+        .samples
+        .last()
+        .ok_or_else(|| anyhow::anyhow!("empty run"))?;
+    let area = m.covered_cells as f64 * map.resolution() * map.resolution();
+    let kj = last.energy / 1000.0;
+    Ok((
+        Measured {
+            env,
+            start: start_index,
+            planner,
+            coverage: 100.0 * m.coverage,
+            normalized_time: last.t / area,
+            velocity: 100.0 * m.length_m / last.t,
+            efficiency: area / kj,
+            collisions: m.collisions,
+            tracking: (run.tracking_rms, run.tracking_max),
+            totals: (last.t, m.length_m, kj),
+        },
+        planned.points,
+        run,
+    ))
+}
+
+fn mean_std(v: &[f64]) -> (f64, f64) {
+    let n = v.len() as f64;
+    let mean = v.iter().sum::<f64>() / n;
+    let var = v.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (n - 1.0).max(1.0);
+    (mean, var.sqrt())
+}
+
+/// Runs `lee2011`.
+///
+/// # Errors
+/// Missing fixtures, failing plans or runs, file writes.
+pub fn run() -> anyhow::Result<()> {
+    let worlds = worlds()?;
+    anyhow::ensure!(worlds.len() == 3, "expected three world files");
+    let out = dir()?;
+    let maps_dir = crate::root().join("fixtures/maps/lee2011");
+    std::fs::create_dir_all(&maps_dir)?;
+    let cfg = closed_loop()?;
+    let mut jobs = Vec::new();
+    let mut maps = Vec::new();
+    for (e, w) in worlds.iter().enumerate() {
+        let map = w.rasterise();
+        write_ros_map(&map, &maps_dir.join(format!("{}.pgm", w.name)))?;
+        for (s, p) in starts(&map, e)?.into_iter().enumerate() {
+            for planner in PLANNERS {
+                jobs.push((e, s, p, planner));
+            }
+        }
+        maps.push(map);
+    }
+    let results: Vec<Measured> = jobs
+        .par_iter()
+        .map(|&(e, s, p, planner)| {
+            let (m, planned, run) = run_one(&maps[e], e, s, p, planner, &cfg)?;
+            if s == 0 {
+                figure(&maps[e], &worlds[e].name, planner, &planned, &run, &out)?;
+            }
+            Ok(m)
+        })
+        .collect::<anyhow::Result<_>>()?;
+    let details: Vec<SmoothDetails> = (0..worlds.len())
+        .map(|e| smooth_details(&maps[e], e, starts(&maps[e], e)?[0]))
+        .collect::<anyhow::Result<_>>()?;
+    let md = page(&worlds, &results, &details);
+    std::fs::write(out.join("lee2011.md"), md)?;
+    println!("wrote {}", out.join("lee2011.md").display());
+    Ok(())
+}
+
+fn figure(
+    map: &OccupancyGrid,
+    env: &str,
+    planner: &str,
+    planned: &[Point],
+    run: &Run,
+    out: &Path,
+) -> anyhow::Result<()> {
+    let executed: Vec<Point> = run
+        .samples
+        .iter()
+        .step_by(5)
+        .map(|s| Point::new(s.pose.x, s.pose.y))
+        .collect();
+    let mut rows = metric_rows(&run.evaluation.metrics);
+    rows.truncate(3);
+    rows.push(("tracking rms m".into(), format!("{:.4}", run.tracking_rms)));
+    rows.push(("tracking max m".into(), format!("{:.4}", run.tracking_max)));
+    render_to_file(
+        &Scene {
+            map,
+            path: &executed,
+            planned: Some(planned),
+            covered: Some(&run.evaluation.covered),
+            coverable: Some(&run.evaluation.problem.coverable),
+            title: format!("{env} - {planner} executed (plan in orange)"),
+            rows,
+        },
+        &out.join(format!("lee2011_{env}_{planner}.png")),
+    )?;
+    Ok(())
+}
+
+fn page(worlds: &[World], results: &[Measured], details: &[SmoothDetails]) -> String {
+    let mut md = String::from("# Lee et al. 2011 (seed 002): smooth coverage in closed loop\n\n");
+    md += "Command: `cargo xtask reproduce lee2011` (release). Environments: `fixtures/worlds/lee2011/*.ron`, rasterised to the ROS maps in `fixtures/maps/lee2011/` (0.05 m cells). Robot: `fixtures/robots/floor_cleaner.ron` (Create 2 geometry, DC-motor energy model; values and their sources in the file), body radius 0.17 m, brush radius 0.16 m. Reference limits: 0.3 m/s, 0.5 m/s², 1.5 rad/s, 3 rad/s², corners above 20° stop and turn in place. Controller: Klancar et al. (ζ = 0.7, g = 10), 50 Hz, no odometry noise. Ten seeded starts per environment, the same for every planner; no boundary pass. Every quantity is measured on the EXECUTED trajectory.\n\n";
+    md += "Quantities (the seed's): coverage = covered / coverable cells; normalized time = run time / covered area; average velocity = executed length / run time; energy efficiency = covered area / energy.\n\n";
+    md += "## All runs (3 environments × 10 starts), beside the paper\n\n";
+    md += "| algorithm | coverage % | normalized time s/m² | average velocity cm/s | energy efficiency m²/kJ | collisions | tracking rms / max cm |\n|---|---:|---:|---:|---:|---:|---:|\n";
+    let names = [
+        "BSA",
+        "STC (full mega-cells only)",
+        "Spiral-STC (partial mega-cells)",
+        "smooth (proposed)",
+    ];
+    let paper_row = [0, 1, 1, 2];
+    for (k, planner) in PLANNERS.iter().enumerate() {
+        let rs: Vec<&Measured> = results.iter().filter(|m| m.planner == *planner).collect();
+        let col =
+            |f: &dyn Fn(&Measured) -> f64| mean_std(&rs.iter().map(|m| f(m)).collect::<Vec<_>>());
+        let (c, t, v, e) = (
+            col(&|m| m.coverage),
+            col(&|m| m.normalized_time),
+            col(&|m| m.velocity),
+            col(&|m| m.efficiency),
+        );
+        let coll: usize = rs.iter().map(|m| m.collisions).sum();
+        let rms = col(&|m| m.tracking.0).0 * 100.0;
+        let max = rs.iter().map(|m| m.tracking.1).fold(0.0, f64::max) * 100.0;
+        let p = PAPER[paper_row[k]].1;
+        let _ = writeln!(
+            md,
+            "| {} (ours) | {:.1} ± {:.1} | {:.1} ± {:.1} | {:.1} ± {:.1} | {:.3} ± {:.3} | {coll} | {rms:.2} / {max:.2} |",
+            names[k], c.0, c.1, t.0, t.1, v.0, v.1, e.0, e.1
+        );
+        let _ = writeln!(
+            md,
+            "| {} (paper) | {:.1} ± {:.1} | {:.1} ± {:.1} | {:.1} ± {:.1} | {:.3} ± {:.3} | | |",
+            PAPER[paper_row[k]].0, p[0].0, p[0].1, p[1].0, p[1].1, p[2].0, p[2].1, p[3].0, p[3].1
+        );
+    }
+    md += "\n## Per environment (mean ± std over 10 starts)\n\n| environment | algorithm | coverage % | min coverage % | s/m² | cm/s | m²/kJ | collisions | run time s | length m | energy kJ |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (e, w) in worlds.iter().enumerate() {
+        for planner in PLANNERS {
+            let rs: Vec<&Measured> = results
+                .iter()
+                .filter(|m| m.env == e && m.planner == planner)
+                .collect();
+            let ms = |f: &dyn Fn(&Measured) -> f64| {
+                mean_std(&rs.iter().map(|m| f(m)).collect::<Vec<_>>())
+            };
+            let (c, t, v, ef) = (
+                ms(&|m| m.coverage),
+                ms(&|m| m.normalized_time),
+                ms(&|m| m.velocity),
+                ms(&|m| m.efficiency),
+            );
+            let min = rs.iter().map(|m| m.coverage).fold(f64::INFINITY, f64::min);
+            let coll: usize = rs.iter().map(|m| m.collisions).sum();
+            let _ = writeln!(
+                md,
+                "| {} | {planner} | {:.1} ± {:.1} | {min:.1} | {:.1} ± {:.1} | {:.1} ± {:.1} | {:.3} ± {:.3} | {coll} | {:.0} | {:.0} | {:.1} |",
+                w.name,
+                c.0,
+                c.1,
+                t.0,
+                t.1,
+                v.0,
+                v.1,
+                ef.0,
+                ef.1,
+                ms(&|m| m.totals.0).0,
+                ms(&|m| m.totals.1).0,
+                ms(&|m| m.totals.2).0,
+            );
+        }
+    }
+    md += "\n## What `smooth` did (start 0 of each environment, planned path)\n\n| environment | CIDT iterations | spiral m | wall following m | transit m | virtual wall m | Bézier segments curved / straight | PSO cost before → after |\n|---|---:|---:|---:|---:|---:|---:|---:|\n";
+    for d in details {
+        let _ = writeln!(
+            md,
+            "| {} | {} | {:.1} | {:.1} | {:.1} | {:.1} | {} / {} | {:.0} → {:.0} |",
+            worlds[d.env].name,
+            d.iterations,
+            d.lengths[0],
+            d.lengths[1],
+            d.lengths[2],
+            d.lengths[3],
+            d.segments.0,
+            d.segments.1,
+            d.pso.0,
+            d.pso.1
+        );
+    }
+    md += "\n## Figures (start 0 of each environment: executed path in blue over the plan in orange; covered cells blue, missed coverable cells orange)\n\n";
+    for w in worlds {
+        for planner in PLANNERS {
+            let _ = writeln!(
+                md,
+                "![{} {planner}](lee2011_{}_{planner}.png)\n",
+                w.name, w.name
+            );
+        }
+    }
+    md += DISCUSSION;
+    md
+}
+
+const DISCUSSION: &str = include_str!("lee2011_discussion.md");
