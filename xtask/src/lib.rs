@@ -7,8 +7,9 @@
 //! - [`bench`](mod@bench): run the criterion benchmarks and write their figures, with the
 //!   reference ratios and cells-touched counts, into `docs/benchmarks.md`.
 //! - [`maps`]: plan and score every real map in `../shared/maps`; `docs/maps.md`.
-//! - [`reproduce`]: the paper reproductions (`siamantas2010`, `zhang2008`,
-//!   `pavlicek2002`, `floorplans`),
+//! - [`reproduce`]: the paper reproductions (`siamantas2010`,
+//!   `siamantas2010-tracking`, `zhang2008`, `pavlicek2002`, `floorplans`,
+//!   `lee2011`),
 //!   each writing `docs/reproduction/<name>.md` with a table, an SVG figure
 //!   and the command.
 //! - [`sweep`]: any planner set over seeded random maps, one JSON line per map,

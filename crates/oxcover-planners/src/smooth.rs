@@ -689,10 +689,16 @@ impl Spline {
                 }
                 let (a, b, c) = (points[i - 1], points[i], points[i + 1]);
                 let cross = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
-                let d = (b.0 - a.0).hypot(b.1 - a.1)
-                    * (c.0 - b.0).hypot(c.1 - b.1)
-                    * (c.0 - a.0).hypot(c.1 - a.1);
-                if d > 1e-12 { 2.0 * cross / d } else { 0.0 }
+                let (ab, bc) = ((b.0 - a.0).hypot(b.1 - a.1), (c.0 - b.0).hypot(c.1 - b.1));
+                let d = ab * bc * (c.0 - a.0).hypot(c.1 - a.1);
+                // |κ|·chord ≤ 2 on both sides, so a sharp point cannot make a
+                // segment loop (the same value on both sides keeps G²).
+                let limit = 2.0 / ab.min(bc).max(1e-9);
+                if d > 1e-12 {
+                    (2.0 * cross / d).clamp(-limit, limit)
+                } else {
+                    0.0
+                }
             })
             .collect();
         Self {
@@ -710,10 +716,8 @@ impl Spline {
         let end = |j: usize| {
             let len = chord * self.scale[j] * k;
             let (sin, cos) = self.angle[j].sin_cos();
-            // Curvature κ needs a normal second derivative κ·|T|²; keep
-            // |κ|·chord ≤ 2 so a sharp point cannot make the segment loop.
-            let kap = self.kappa[j].clamp(-2.0 / chord.max(1e-9), 2.0 / chord.max(1e-9));
-            let a = kap * len * len;
+            // Curvature κ needs a normal second derivative κ·|T|².
+            let a = self.kappa[j] * len * len;
             ((len * cos, len * sin), (-a * sin, a * cos))
         };
         let ((t0, a0), (t1, a1)) = (end(i), end(i + 1));
@@ -953,6 +957,68 @@ mod tests {
         seen.sort_unstable_by_key(|c| (c.row, c.col));
         seen.dedup();
         assert_eq!(seen.len(), 10);
+    }
+
+    #[test]
+    fn spline_is_g2_at_joins_and_does_not_loop_on_uneven_points() {
+        let pts = [
+            (0.0, 0.0),
+            (0.3, 0.0),
+            (5.0, 1.0),
+            (5.4, 1.3),
+            (6.0, 4.0),
+            (2.0, 5.0),
+        ];
+        let sp = Spline::through(&pts);
+        for (i, p) in pts.iter().enumerate().take(pts.len() - 1).skip(1) {
+            let (a, b) = (sp.segment(i - 1, 1.0), sp.segment(i, 1.0));
+            let (da, db) = (a.derivative(1.0), b.derivative(0.0));
+            let cross = da.0 * db.1 - da.1 * db.0;
+            assert!(cross.abs() < 1e-9 * da.0.hypot(da.1) * db.0.hypot(db.1));
+            assert!(da.0 * db.0 + da.1 * db.1 > 0.0, "same direction at {i}");
+            assert!(
+                (a.curvature(1.0) - b.curvature(0.0)).abs() < 1e-9,
+                "curvature at {i}"
+            );
+            assert!((a.point(1.0).0 - p.0).abs() < 1e-12);
+        }
+        let poly: f64 = pts
+            .windows(2)
+            .map(|w| (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1))
+            .sum();
+        let curve: f64 = (0..pts.len() - 1)
+            .map(|i| sp.segment(i, 1.0).length())
+            .sum();
+        assert!(curve < 1.3 * poly, "{curve} vs {poly}");
+        // The seed's uniform derivatives loop on the same points.
+        let uniform: f64 = oxcover_robot::spline_through(&pts)
+            .iter()
+            .map(QuinticBezier::length)
+            .sum();
+        assert!(uniform > curve, "{uniform} vs {curve}");
+    }
+
+    #[test]
+    fn fillets_round_corners_within_the_margin() {
+        let m = ascii_mask(&[".........."; 10]).unwrap();
+        let pts = [(1.5, 1.5), (8.5, 1.5), (8.5, 8.5)];
+        let out = fillet_corners(&m, &pts, 0.5);
+        assert!(out.len() > 3 && out.first() == pts.first() && out.last() == pts.last());
+        for w in out.windows(3) {
+            let (a, b) = (
+                (w[1].0 - w[0].0, w[1].1 - w[0].1),
+                (w[2].0 - w[1].0, w[2].1 - w[1].1),
+            );
+            let turn = (a.0 * b.1 - a.1 * b.0).atan2(a.0 * b.0 + a.1 * b.1).abs();
+            assert!(turn <= GENTLE + 1e-9, "{turn} at {:?}", w[1]);
+        }
+        // The corner point is still within the margin of the rounded path.
+        assert!(
+            out.windows(2)
+                .any(|s| segment_distance(s[0], s[1], (8.5, 1.5)) <= 0.5)
+        );
+        // No margin, no rounding.
+        assert_eq!(fillet_corners(&m, &pts, 0.0), pts.to_vec());
     }
 
     #[test]

@@ -6,6 +6,7 @@ mod decomposition_figure;
 pub mod lee2011;
 pub mod pavlicek2002;
 pub mod siamantas2010;
+pub mod siamantas2010_tracking;
 pub mod zhang2008;
 
 /// Runs the named experiment.
@@ -15,6 +16,7 @@ pub mod zhang2008;
 pub fn run(name: &str) -> anyhow::Result<()> {
     match name {
         "siamantas2010" => siamantas2010::run(),
+        "siamantas2010-tracking" => siamantas2010_tracking::run(),
         "zhang2008" => zhang2008::run(),
         "pavlicek2002" => pavlicek2002::run(),
         "floorplans" => pavlicek2002::run_floorplans(),
