@@ -142,6 +142,28 @@ fn floorplan_section(root: &Path) -> anyhow::Result<()> {
     Ok(())
 }
 
+fn smooth_section(root: &Path) -> anyhow::Result<()> {
+    let group = root.join("target/criterion/smooth");
+    let mut md = format!(
+        "Measured by `cargo xtask bench --only smooth` (which runs `cargo bench -p oxcover-planners --bench smooth`) on {}.\n\n| room | dtc ms | bsa ms | smooth ms | smooth / dtc | smooth / bsa |\n|---|---:|---:|---:|---:|---:|\n",
+        machine()
+    );
+    for room in ["living", "office", "workshop"] {
+        let t = |p: &str| estimate_ns(&group.join(format!("{p}_{room}"))).map(|(m, _)| m);
+        let (dtc, bsa, smooth) = (t("dtc")?, t("bsa")?, t("smooth")?);
+        md += &format!(
+            "| {room} | {:.2} | {:.2} | {:.1} | {:.0}× | {:.0}× |\n",
+            dtc / 1e6,
+            bsa / 1e6,
+            smooth / 1e6,
+            smooth / dtc,
+            smooth / bsa
+        );
+    }
+    crate::replace_section(&root.join("docs/benchmarks.md"), "smooth", &md)?;
+    Ok(())
+}
+
 fn machine() -> String {
     let out = |cmd: &str, args: &[&str]| {
         Command::new(cmd)
@@ -177,6 +199,7 @@ pub fn run(no_run: bool, only: Option<&str>) -> anyhow::Result<()> {
     let want = |name: &str| only.is_none_or(|o| o == name);
     for (name, krate) in [
         ("floorplan", "oxcover-planners"),
+        ("smooth", "oxcover-planners"),
         ("grid_cover", "oxcover-planners"),
         ("wavefront", "oxcover-distance"),
     ] {
@@ -191,6 +214,9 @@ pub fn run(no_run: bool, only: Option<&str>) -> anyhow::Result<()> {
     }
     if want("floorplan") {
         floorplan_section(&root)?;
+    }
+    if want("smooth") {
+        smooth_section(&root)?;
     }
     if want("grid_cover") {
         grid_cover_section(&root)?;

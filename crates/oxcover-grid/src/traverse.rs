@@ -41,7 +41,10 @@ pub fn segment_distance(a: GridPoint, b: GridPoint, m: GridPoint) -> f64 {
     } else {
         0.0
     };
-    (a.0 + t * dx - m.0).hypot(a.1 + t * dy - m.1)
+    let (ex, ey) = (a.0 + t * dx - m.0, a.1 + t * dy - m.1);
+    // Not `hypot`: this is a hot path of the metre planners and grid
+    // coordinates are far from overflow.
+    (ex * ex + ey * ey).sqrt()
 }
 
 /// Calls `f(cell, t_enter, t_exit)` for every cell the segment `a → b`

@@ -26,9 +26,9 @@ pub(crate) struct PathBuilder<'a> {
     wave: Wavefront,
     astar: AStar,
     points: Vec<GridPoint>,
-    /// Least distance (cells) a new straight piece keeps from non-plannable
-    /// cells; 0 = only exact traversal.
-    clearance: f64,
+    /// The least distance (cells) a new straight piece keeps from
+    /// non-plannable cells; `None` = only exact traversal.
+    clearance: Option<Clearance<'a>>,
 }
 
 impl<'a> PathBuilder<'a> {
@@ -39,7 +39,7 @@ impl<'a> PathBuilder<'a> {
             wave: Wavefront::new(plannable),
             astar: AStar::new(plannable),
             points: vec![cell_center(start)],
-            clearance: 0.0,
+            clearance: None,
         }
     }
 
@@ -47,14 +47,15 @@ impl<'a> PathBuilder<'a> {
     /// `clearance` cells (at most 0.5, what a path through cell centres
     /// keeps) from non-plannable cells.
     pub(crate) fn with_clearance(mut self, clearance: f64) -> Self {
-        self.clearance = clearance.clamp(0.0, 0.5);
+        let c = clearance.clamp(0.0, 0.5);
+        self.clearance = (c > 0.0).then(|| Clearance::new(self.plannable, c));
         self
     }
 
     /// Whether the straight piece `a → b` may be added.
     pub(crate) fn clear(&self, a: GridPoint, b: GridPoint) -> bool {
         segment_clear(self.plannable, a, b)
-            && (self.clearance <= 0.0 || segment_clearance(self.plannable, a, b, self.clearance))
+            && self.clearance.as_ref().is_none_or(|c| c.segment(a, b))
     }
 
     /// The current end point.
@@ -201,26 +202,74 @@ impl<'a> PathBuilder<'a> {
     }
 }
 
+/// Clearance checks against a plannable mask, with the cells whose 5 × 5
+/// neighbourhood is plannable precomputed: every point of such a cell is at
+/// least one cell from any non-plannable cell, so checks for a clearance
+/// under one cell pass there at once (most of an open floor).
+#[derive(Debug)]
+pub(crate) struct Clearance<'a> {
+    mask: &'a Grid<bool>,
+    open: Grid<bool>,
+    distance: f64,
+}
+
+impl<'a> Clearance<'a> {
+    /// Checks keeping `distance` (< 1) cells from non-plannable cells.
+    pub(crate) fn new(mask: &'a Grid<bool>, distance: f64) -> Self {
+        let (w, h) = (mask.width(), mask.height());
+        // Rows then columns: a cell is open when its ±2 window is all plannable.
+        let rows = Grid::from_fn(w, h, |c| {
+            (c.col >= 2 && c.col + 2 < w)
+                && (c.col - 2..=c.col + 2).all(|x| mask[Cell::new(c.row, x)])
+        });
+        let open = Grid::from_fn(w, h, |c| {
+            (c.row >= 2 && c.row + 2 < h)
+                && (c.row - 2..=c.row + 2).all(|y| rows[Cell::new(y, c.col)])
+        });
+        Self {
+            mask,
+            open,
+            distance,
+        }
+    }
+
+    /// Whether `p` lies in a plannable cell at least `distance` from the rest.
+    pub(crate) fn point(&self, p: GridPoint) -> bool {
+        match cell_of(self.mask, p) {
+            Some(c) if self.open[c] => true,
+            _ => point_clearance(self.mask, p, self.distance),
+        }
+    }
+
+    /// Whether every point of `a → b` does (checked as [`segment_clearance`]).
+    pub(crate) fn segment(&self, a: GridPoint, b: GridPoint) -> bool {
+        segment_points(a, b, self.distance).all(|q| self.point(q))
+    }
+}
+
+/// Points of `a → b` at most a quarter of `clearance` (and 0.1 cells) apart.
+fn segment_points(a: GridPoint, b: GridPoint, clearance: f64) -> impl Iterator<Item = GridPoint> {
+    let len = (b.0 - a.0).hypot(b.1 - a.1);
+    let step = (clearance / 4.0).clamp(0.01, 0.1);
+    let n = (len / step).ceil().max(1.0) as usize;
+    (0..=n).map(move |i| {
+        let t = i as f64 / n as f64;
+        (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1))
+    })
+}
+
 /// Whether every point of the segment `a → b` keeps at least `clearance`
+/// (the plain check [`Clearance`] must agree with)
 /// cells from every non-plannable (or outside) cell square, checked at
 /// points ¼ of the clearance apart (and never more than 0.1 cells apart).
+#[cfg(test)]
 pub(crate) fn segment_clearance(
     mask: &Grid<bool>,
     a: GridPoint,
     b: GridPoint,
     clearance: f64,
 ) -> bool {
-    let len = (b.0 - a.0).hypot(b.1 - a.1);
-    let step = (clearance / 4.0).clamp(0.01, 0.1);
-    let n = (len / step).ceil().max(1.0) as usize;
-    (0..=n).all(|i| {
-        let t = i as f64 / n as f64;
-        point_clearance(
-            mask,
-            (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)),
-            clearance,
-        )
-    })
+    segment_points(a, b, clearance).all(|q| point_clearance(mask, q, clearance))
 }
 
 /// Whether `p` lies in a plannable cell and no non-plannable (or outside)
@@ -321,6 +370,23 @@ mod tests {
         }
         // Straightened: along the bottom row and up the right column.
         assert_eq!(pts.len(), 4);
+    }
+
+    proptest::proptest! {
+        /// The open-cell shortcut never changes a clearance verdict.
+        #[test]
+        fn clearance_shortcut_agrees_with_the_plain_check(
+            seed in proptest::prelude::any::<u64>(),
+            a in (0.0..12.0f64, 0.0..12.0f64),
+            b in (0.0..12.0f64, 0.0..12.0f64),
+            c in 0.05..0.95f64,
+        ) {
+            let map = oxcover_grid::random::random_density(12, 12, 0.1, seed);
+            let m = map.free_mask();
+            let fast = Clearance::new(&m, c);
+            proptest::prop_assert_eq!(fast.segment(a, b), segment_clearance(&m, a, b, c));
+            proptest::prop_assert_eq!(fast.point(a), point_clearance(&m, a, c));
+        }
     }
 
     #[test]

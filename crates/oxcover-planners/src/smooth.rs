@@ -75,7 +75,7 @@ use oxcover_grid::{Cell, Dir4, Grid};
 use oxcover_robot::{ArchimedeanSpiral, QuinticBezier};
 
 use crate::error::{Error, Result};
-use crate::metre_path::{PathBuilder, point_clearance, segment_clearance};
+use crate::metre_path::{Clearance, PathBuilder};
 use crate::planner::{PlanOutput, Planner, PlannerInput};
 use crate::pso::Pso;
 
@@ -217,6 +217,8 @@ struct Waypoint {
 /// The planner's state.
 struct Run<'a> {
     plannable: &'a Grid<bool>,
+    /// Clearance checks at [`CLEARANCE`].
+    clear: Clearance<'a>,
     builder: PathBuilder<'a>,
     /// Cells next to a wall (a non-plannable or outside 4-neighbour).
     wall: Grid<bool>,
@@ -262,6 +264,7 @@ impl<'a> Run<'a> {
         let reach = (t - margin).max(t.min(0.5));
         let mut run = Self {
             plannable,
+            clear: Clearance::new(plannable, CLEARANCE),
             builder: PathBuilder::new(plannable, start).with_clearance(CLEARANCE),
             wall,
             near_wall,
@@ -290,7 +293,7 @@ impl<'a> Run<'a> {
     fn close(&mut self, behaviour: Behaviour, from: usize) {
         if behaviour != Behaviour::Spiral && self.len() > from + 2 {
             let pts = self.builder.points()[from..].to_vec();
-            let rounded = fillet_corners(self.plannable, &pts, self.margin);
+            let rounded = fillet_corners(&self.clear, &pts, self.margin);
             self.builder.truncate(from + 1);
             for &q in &rounded[1..] {
                 self.builder.push(q);
@@ -320,7 +323,7 @@ impl<'a> Run<'a> {
         }
         for w in pts.windows(2) {
             let (a, b) = (w[0], w[1]);
-            let len = (b.0 - a.0).hypot(b.1 - a.1);
+            let len = norm(b.0 - a.0, b.1 - a.1);
             let n = (len / 0.25 - 1e-9).ceil().max(1.0) as usize;
             for i in 1..=n {
                 let t = i as f64 / n as f64;
@@ -345,7 +348,7 @@ impl<'a> Run<'a> {
                 }
                 let need = if self.wall[c] { self.wall_reach() } else { r };
                 let (x, y) = cell_center(c);
-                if (x - p.0).hypot(y - p.1) <= need + 1e-9 {
+                if norm(x - p.0, y - p.1) <= need + 1e-9 {
                     self.explored[c] = true;
                     self.blocks.set_target(c, false);
                 }
@@ -453,10 +456,7 @@ impl<'a> Run<'a> {
         };
         let offset = self.reach - 0.5;
         let virtual_tol = (self.reach - 0.25).max(0.0);
-        let clear = |u: GridPoint, q: GridPoint| {
-            point_clearance(self.plannable, q, CLEARANCE)
-                && segment_clearance(self.plannable, u, q, CLEARANCE)
-        };
+        let clear = |u: GridPoint, q: GridPoint| self.clear.point(q) && self.clear.segment(u, q);
         let mut out: Vec<Waypoint> = Vec::with_capacity(n);
         for (i, &c) in boundary.iter().enumerate() {
             let u = cell_center(c);
@@ -468,7 +468,7 @@ impl<'a> Run<'a> {
                 t.0 += k as f64 * (a.0 - b.0);
                 t.1 += k as f64 * (a.1 - b.1);
             }
-            let norm = t.0.hypot(t.1);
+            let norm = norm(t.0, t.1);
             let normal = (norm > 1e-9).then(|| (t.1 / norm, -t.0 / norm));
             if wall_loop || self.near_wall[c] || offset <= 0.0 {
                 // Wall following: through the cell.
@@ -589,12 +589,11 @@ impl<'a> Run<'a> {
             .windows(2)
             .map(|w| wps[w[0]..=w[1]].iter().map(|x| x.p).collect())
             .collect();
-        let (plannable, reach) = (self.plannable, self.reach);
+        let (clear, reach) = (&self.clear, self.reach);
         let ok = |sp: &Spline, i: usize| {
             let seg = sp.segment(i, 1.0);
             let samples = sample(&seg);
-            curve_ok(plannable, &samples, covers[i])
-                .then(|| cost(&seg, &samples, &originals[i], reach))
+            curve_ok(clear, &samples, covers[i]).then(|| cost(&seg, &samples, &originals[i], reach))
         };
         // PSO per interior point whose two segments are good at the start.
         for i in 1..pts.len() - 1 {
@@ -625,7 +624,7 @@ impl<'a> Run<'a> {
             let curve = [1.0, 0.5, 0.25].into_iter().find_map(|k| {
                 let seg = spline.segment(i, k);
                 let samples = sample(&seg);
-                curve_ok(plannable, &samples, cover).then_some(samples)
+                curve_ok(clear, &samples, cover).then_some(samples)
             });
             if let Some(samples) = curve {
                 self.curved += 1;
@@ -689,8 +688,8 @@ impl Spline {
                 }
                 let (a, b, c) = (points[i - 1], points[i], points[i + 1]);
                 let cross = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
-                let (ab, bc) = ((b.0 - a.0).hypot(b.1 - a.1), (c.0 - b.0).hypot(c.1 - b.1));
-                let d = ab * bc * (c.0 - a.0).hypot(c.1 - a.1);
+                let (ab, bc) = (norm(b.0 - a.0, b.1 - a.1), norm(c.0 - b.0, c.1 - b.1));
+                let d = ab * bc * norm(c.0 - a.0, c.1 - a.1);
                 // |κ|·chord ≤ 2 on both sides, so a sharp point cannot make a
                 // segment loop (the same value on both sides keeps G²).
                 let limit = 2.0 / ab.min(bc).max(1e-9);
@@ -712,7 +711,7 @@ impl Spline {
     /// Segment `i` with its tangents shortened by `k` (1 = the spline's).
     fn segment(&self, i: usize, k: f64) -> QuinticBezier {
         let (p0, p1) = (self.points[i], self.points[i + 1]);
-        let chord = (p1.0 - p0.0).hypot(p1.1 - p0.1);
+        let chord = norm(p1.0 - p0.0, p1.1 - p0.1);
         let end = |j: usize| {
             let len = chord * self.scale[j] * k;
             let (sin, cos) = self.angle[j].sin_cos();
@@ -737,14 +736,12 @@ impl Spline {
 }
 
 /// Whether the sampled curve keeps clearance and covers `covers`.
-fn curve_ok(plannable: &Grid<bool>, samples: &[GridPoint], covers: &[Waypoint]) -> bool {
+fn curve_ok(clear: &Clearance<'_>, samples: &[GridPoint], covers: &[Waypoint]) -> bool {
     covers.iter().all(|w| {
         samples
             .windows(2)
             .any(|s| segment_distance(s[0], s[1], w.u) <= w.tol)
-    }) && samples
-        .windows(2)
-        .all(|s| segment_clearance(plannable, s[0], s[1], CLEARANCE))
+    }) && samples.windows(2).all(|s| clear.segment(s[0], s[1]))
 }
 
 /// Points of a Bézier segment about half a cell apart (ends included).
@@ -752,7 +749,7 @@ fn sample(seg: &QuinticBezier) -> Vec<GridPoint> {
     let c = &seg.control;
     let poly: f64 = c
         .windows(2)
-        .map(|w| (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1))
+        .map(|w| norm(w[1].0 - w[0].0, w[1].1 - w[0].1))
         .sum();
     seg.sample((poly / 0.5).ceil().clamp(2.0, 200.0) as usize)
 }
@@ -765,7 +762,7 @@ fn cost(seg: &QuinticBezier, samples: &[GridPoint], originals: &[GridPoint], rea
         .map(|k| {
             let u = (k as f64 + 0.5) / n as f64;
             let d = seg.derivative(u);
-            seg.curvature(u).powi(2) * d.0.hypot(d.1) / n as f64
+            seg.curvature(u).powi(2) * norm(d.0, d.1) / n as f64
         })
         .sum();
     let gap: f64 = originals
@@ -793,14 +790,14 @@ const GENTLE: f64 = 0.33;
 /// replaces (so what the corner covered with the reach, the fillet covers
 /// with the tool). Sharp corners are where a tracked robot stops and turns in
 /// place; a fillet is driven through.
-fn fillet_corners(plannable: &Grid<bool>, pts: &[GridPoint], margin: f64) -> Vec<GridPoint> {
+fn fillet_corners(clear: &Clearance<'_>, pts: &[GridPoint], margin: f64) -> Vec<GridPoint> {
     let mut out = vec![pts[0]];
     if margin <= 0.0 {
         out.extend_from_slice(&pts[1..]);
         return out;
     }
     let unit = |a: GridPoint, b: GridPoint| {
-        let l = (b.0 - a.0).hypot(b.1 - a.1);
+        let l = norm(b.0 - a.0, b.1 - a.1);
         ((b.0 - a.0) / l, (b.1 - a.1) / l, l)
     };
     for i in 1..pts.len() - 1 {
@@ -817,7 +814,7 @@ fn fillet_corners(plannable: &Grid<bool>, pts: &[GridPoint], margin: f64) -> Vec
         while d >= 0.05 {
             let a = (p.0 - d * ux, p.1 - d * uy);
             let b = (p.0 + d * vx, p.1 + d * vy);
-            let l = (b.0 - a.0).hypot(b.1 - a.1);
+            let l = norm(b.0 - a.0, b.1 - a.1);
             let seg = QuinticBezier::from_ends(
                 a,
                 b,
@@ -837,11 +834,7 @@ fn fillet_corners(plannable: &Grid<bool>, pts: &[GridPoint], margin: f64) -> Vec
                 near((a.0 + t * (p.0 - a.0), a.1 + t * (p.1 - a.1)))
                     && near((p.0 + t * (b.0 - p.0), p.1 + t * (b.1 - p.1)))
             });
-            if corner_covered
-                && samples
-                    .windows(2)
-                    .all(|s| segment_clearance(plannable, s[0], s[1], CLEARANCE))
-            {
+            if corner_covered && samples.windows(2).all(|s| clear.segment(s[0], s[1])) {
                 out.extend_from_slice(&samples);
                 done = true;
                 break;
@@ -903,6 +896,11 @@ fn trace(grid: &Grid<bool>, start: Cell, inside: impl Fn(Cell) -> bool) -> Vec<C
         out.pop();
     }
     out
+}
+
+/// `√(x² + y²)`, without `hypot`'s care for overflow (a hot path here).
+fn norm(x: f64, y: f64) -> f64 {
+    (x * x + y * y).sqrt()
 }
 
 #[cfg(test)]
@@ -974,7 +972,7 @@ mod tests {
             let (a, b) = (sp.segment(i - 1, 1.0), sp.segment(i, 1.0));
             let (da, db) = (a.derivative(1.0), b.derivative(0.0));
             let cross = da.0 * db.1 - da.1 * db.0;
-            assert!(cross.abs() < 1e-9 * da.0.hypot(da.1) * db.0.hypot(db.1));
+            assert!(cross.abs() < 1e-9 * norm(da.0, da.1) * norm(db.0, db.1));
             assert!(da.0 * db.0 + da.1 * db.1 > 0.0, "same direction at {i}");
             assert!(
                 (a.curvature(1.0) - b.curvature(0.0)).abs() < 1e-9,
@@ -984,7 +982,7 @@ mod tests {
         }
         let poly: f64 = pts
             .windows(2)
-            .map(|w| (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1))
+            .map(|w| norm(w[1].0 - w[0].0, w[1].1 - w[0].1))
             .sum();
         let curve: f64 = (0..pts.len() - 1)
             .map(|i| sp.segment(i, 1.0).length())
@@ -1002,7 +1000,8 @@ mod tests {
     fn fillets_round_corners_within_the_margin() {
         let m = ascii_mask(&[".........."; 10]).unwrap();
         let pts = [(1.5, 1.5), (8.5, 1.5), (8.5, 8.5)];
-        let out = fillet_corners(&m, &pts, 0.5);
+        let clear = Clearance::new(&m, CLEARANCE);
+        let out = fillet_corners(&clear, &pts, 0.5);
         assert!(out.len() > 3 && out.first() == pts.first() && out.last() == pts.last());
         for w in out.windows(3) {
             let (a, b) = (
@@ -1018,7 +1017,7 @@ mod tests {
                 .any(|s| segment_distance(s[0], s[1], (8.5, 1.5)) <= 0.5)
         );
         // No margin, no rounding.
-        assert_eq!(fillet_corners(&m, &pts, 0.0), pts.to_vec());
+        assert_eq!(fillet_corners(&clear, &pts, 0.0), pts.to_vec());
     }
 
     #[test]
@@ -1069,7 +1068,10 @@ mod tests {
                 .any(|q| q.behaviour == Behaviour::WallFollowing)
         );
         for w in pts.windows(2) {
-            assert!(segment_clearance(&m, w[0], w[1], CLEARANCE - 1e-9), "{w:?}");
+            assert!(
+                crate::metre_path::segment_clearance(&m, w[0], w[1], CLEARANCE - 1e-9),
+                "{w:?}"
+            );
         }
         // PSO never raised the summed cost.
         assert!(p.pso_cost.1 <= p.pso_cost.0 + 1e-9, "{:?}", p.pso_cost);

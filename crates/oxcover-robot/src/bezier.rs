@@ -81,7 +81,7 @@ impl QuinticBezier {
     #[must_use]
     pub fn curvature(&self, u: f64) -> f64 {
         let (d, dd) = (self.derivative(u), self.second_derivative(u));
-        let speed = d.0.hypot(d.1);
+        let speed = norm(d.0, d.1);
         if speed < 1e-12 {
             0.0
         } else {
@@ -122,7 +122,7 @@ impl QuinticBezier {
                     .zip(W)
                     .map(|(&x, w)| {
                         let d = self.derivative(mid + x * h / 2.0);
-                        w * d.0.hypot(d.1)
+                        w * norm(d.0, d.1)
                     })
                     .sum::<f64>()
                     * h
@@ -176,12 +176,17 @@ pub fn spline_through(points: &[Vec2]) -> Vec<QuinticBezier> {
         .collect()
 }
 
+/// `√(x² + y²)`, without `hypot`'s care for overflow (a hot path here).
+fn norm(x: f64, y: f64) -> f64 {
+    (x * x + y * y).sqrt()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     fn near(a: Vec2, b: Vec2, tol: f64) -> bool {
-        (a.0 - b.0).hypot(a.1 - b.1) < tol
+        norm(a.0 - b.0, a.1 - b.1) < tol
     }
 
     #[test]
