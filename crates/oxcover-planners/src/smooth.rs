@@ -736,12 +736,23 @@ impl Spline {
 }
 
 /// Whether the sampled curve keeps clearance and covers `covers`.
+///
+/// Wall points come in path order, so each search starts at the piece that
+/// covered the previous one (same answer as a scan from the start, usually
+/// after one or two pieces).
 fn curve_ok(clear: &Clearance<'_>, samples: &[GridPoint], covers: &[Waypoint]) -> bool {
-    covers.iter().all(|w| {
-        samples
-            .windows(2)
-            .any(|s| segment_distance(s[0], s[1], w.u) <= w.tol)
-    }) && samples.windows(2).all(|s| clear.segment(s[0], s[1]))
+    let pieces = samples.len().saturating_sub(1);
+    let mut from = 0;
+    for w in covers {
+        let hit = (0..pieces)
+            .map(|k| (from + k) % pieces)
+            .find(|&j| segment_distance(samples[j], samples[j + 1], w.u) <= w.tol);
+        match hit {
+            Some(j) => from = j,
+            None => return false,
+        }
+    }
+    samples.windows(2).all(|s| clear.segment(s[0], s[1]))
 }
 
 /// Points of a Bézier segment about half a cell apart (ends included).
