@@ -312,7 +312,7 @@ pub(crate) fn point_clearance(mask: &Grid<bool>, p: GridPoint, clearance: f64) -
 fn mark_near(coarse: &CoarseGrid, points: &[GridPoint], radius: f64, wanted: &mut Grid<bool>) {
     let reps = coarse.representatives();
     let k = coarse.block_size() as f64;
-    let mut visit = |p: GridPoint| {
+    let visit = |p: GridPoint| {
         let (bc, br) = ((p.0 / k).floor() as i64, (p.1 / k).floor() as i64);
         for r in br - 1..=br + 1 {
             for c in bc - 1..=bc + 1 {
@@ -333,18 +333,14 @@ fn mark_near(coarse: &CoarseGrid, points: &[GridPoint], radius: f64, wanted: &mu
             }
         }
     };
-    if let Some(&first) = points.first() {
-        visit(first);
-    }
-    for w in points.windows(2) {
-        let (a, b) = (w[0], w[1]);
-        let len = (b.0 - a.0).hypot(b.1 - a.1);
-        let n = (len / 0.25 - 1e-9).ceil().max(1.0) as usize;
-        for i in 1..=n {
-            let t = i as f64 / n as f64;
-            visit((a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)));
-        }
-    }
+    for_each_contract_sample(points, visit);
+}
+
+/// Calls `f` on the contract's samples of the polyline `points` (grid
+/// coordinates, so a quarter of a cell apart: [`oxcover_grid::footprint`]).
+pub(crate) fn for_each_contract_sample(points: &[GridPoint], mut f: impl FnMut(GridPoint)) {
+    let pts: Vec<Point> = points.iter().map(|&(x, y)| Point::new(x, y)).collect();
+    oxcover_grid::footprint::for_each_sample(&pts, 0.25, |p| f((p.x, p.y)));
 }
 
 #[cfg(test)]

@@ -55,16 +55,20 @@
 //! unfiltered path points it replaces (our stand-in for the connection gap
 //! `C` of Fig. 5: it keeps the curve on the offset lane so the next ring's
 //! spacing stays even; `1/R` makes it a length). `R` is the covering reach.
-//! A segment whose start spline lacks clearance or coverage is driven straight.
+//! PSO skips a point whose two segments lack clearance or coverage at the start.
 //!
 //! **Overlap.** A cell counts as explored when a path sample passes within
-//! the covering reach `R = tool − margin` (margin: half a cell, at least 15 %
-//! of the tool radius), and a cell next to a wall only when the path passes
+//! the covering reach `R = tool − margin` (margin: 12 % of the tool radius,
+//! at least 0.35 cells, but `R` never below half a cell, or the tool radius
+//! when that is smaller), and a cell next to a wall only when the path passes
 //! within 0.85 of a cell (so walls are followed, and the strip beyond them that
 //! only the tool reaches is covered; 0.85 rather than ½ lets a straight line
 //! follow a wall drawn as a staircase of cells without zigzagging). Lanes thus overlap by about the margin,
 //! which is what keeps a tracked robot's coverage when it deviates; paths keep
-//! [`CLEARANCE`] cells from non-plannable cells for the same reason.
+//! [`CLEARANCE`] cells from non-plannable cells for the same reason. Sharp
+//! corners left on the path (routes, wall following, straight fallbacks) are
+//! rounded by Bézier fillets that stay within the margin of the corner, so
+//! the robot drives through them instead of stopping to turn in place.
 //!
 //! Complete on the coverage grid: every iteration ends at its target, so
 //! it terminates, and it stops only when no plannable cell is unexplored.
@@ -75,7 +79,7 @@ use oxcover_grid::{Cell, Dir4, Grid};
 use oxcover_robot::{ArchimedeanSpiral, QuinticBezier};
 
 use crate::error::{Error, Result};
-use crate::metre_path::{Clearance, PathBuilder};
+use crate::metre_path::{Clearance, PathBuilder, for_each_contract_sample};
 use crate::planner::{PlanOutput, Planner, PlannerInput};
 use crate::pso::Pso;
 
@@ -318,18 +322,7 @@ impl<'a> Run<'a> {
     fn mark(&mut self) {
         let pts = self.builder.points()[self.marked..].to_vec();
         self.marked = self.len().saturating_sub(1);
-        if let Some(&first) = pts.first() {
-            self.mark_point(first);
-        }
-        for w in pts.windows(2) {
-            let (a, b) = (w[0], w[1]);
-            let len = norm(b.0 - a.0, b.1 - a.1);
-            let n = (len / 0.25 - 1e-9).ceil().max(1.0) as usize;
-            for i in 1..=n {
-                let t = i as f64 / n as f64;
-                self.mark_point((a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)));
-            }
-        }
+        for_each_contract_sample(&pts, |p| self.mark_point(p));
     }
 
     fn mark_point(&mut self, p: GridPoint) {
