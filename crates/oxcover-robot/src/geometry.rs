@@ -91,6 +91,20 @@ impl Obstacles {
     }
 }
 
+/// Something range rays can be cast against.
+pub trait RayCaster {
+    /// Distance (m) from `origin` along heading `angle` to the first surface
+    /// within `max_range`, and which surface it is (0 when the caster does
+    /// not tell surfaces apart).
+    fn cast_surface(&self, origin: (f64, f64), angle: f64, max_range: f64) -> Option<(f64, usize)>;
+}
+
+impl RayCaster for Obstacles {
+    fn cast_surface(&self, origin: (f64, f64), angle: f64, max_range: f64) -> Option<(f64, usize)> {
+        self.cast(origin, angle, max_range).map(|d| (d, 0))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -22,7 +22,14 @@
 //!   joules of a run, and the RON robot description ([`RobotSpec`]).
 //! - [`geometry`]: a map's obstacles as boxes for ray casting (parry2d,
 //!   kept behind this module).
-//! - [`sensors`]: a ring of range rays with seeded Gaussian noise.
+//! - [`sensors`]: a ring of range rays with seeded Gaussian noise, cast
+//!   against anything that is a [`RayCaster`].
+//! - [`world`]: polygonal worlds (outer boundary, polygons convex or not,
+//!   discs, rectangles) read from RON, rasterised to occupancy grids,
+//!   ray-cast with parry2d, with exact clearances and exact critical points.
+//! - [`critical_point`]: seed 003's three-ray critical-point detector (the
+//!   dot-product test of its eqs. 1–3, with tolerances), classifying IN/OUT
+//!   and convex/concave.
 //! - [`wall_follow`]: PID wall following on the lateral range.
 //! - [`bezier`]: quintic Bézier segments from end points, tangents and second
 //!   derivatives (seed 002, eq. 13) and C² splines through points.
@@ -43,6 +50,7 @@
 
 pub mod bezier;
 pub mod control;
+pub mod critical_point;
 pub mod energy;
 pub mod error;
 pub mod geometry;
@@ -52,15 +60,20 @@ pub mod simulate;
 pub mod spiral;
 pub mod timing;
 pub mod wall_follow;
+pub mod world;
 
 pub use bezier::{QuinticBezier, spline_derivatives, spline_through};
 pub use control::{Controller, Kanayama, Klancar, Reference, TrackingError};
+pub use critical_point::{Detection, Returns, ThreeRayDetector};
 pub use energy::{EnergyModel, RobotSpec};
 pub use error::{Error, Result};
-pub use geometry::Obstacles;
+pub use geometry::{Obstacles, RayCaster};
 pub use kinematics::{DiffDrive, Pose, wrap_angle};
-pub use sensors::RangeSensor;
+pub use sensors::{RangeSensor, Reading};
 pub use simulate::{Sample, simulate};
 pub use spiral::ArchimedeanSpiral;
 pub use timing::{Limits, Timing};
 pub use wall_follow::{Side, WallFollower};
+pub use world::{
+    Convexity, CriticalKind, Event, Outline, Shape, TrueCriticalPoint, World, WorldGeometry,
+};

@@ -1,12 +1,22 @@
-//! Range sensors: a ring of rays cast against [`Obstacles`], with optional
-//! Gaussian noise from a seeded generator (same seed, same readings).
+//! Range sensors: a ring of rays cast against anything that is a [`RayCaster`]
+//! (map obstacles, polygonal worlds), with optional Gaussian noise from a
+//! seeded generator (same seed, same readings).
 
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use crate::error::{Error, Result, positive};
-use crate::geometry::Obstacles;
+use crate::geometry::RayCaster;
 use crate::kinematics::Pose;
+
+/// One range reading.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Reading {
+    /// Measured range (m), noise included; `max_range` when nothing was hit.
+    pub range: f64,
+    /// The surface hit (see [`RayCaster::cast_surface`]), if any.
+    pub surface: Option<usize>,
+}
 
 /// A set of range rays fixed to the robot.
 #[derive(Clone, Debug)]
@@ -60,17 +70,24 @@ impl RangeSensor {
     }
 
     /// One reading per ray from `pose`, clamped to `[0, max_range]`.
-    pub fn scan(&mut self, obstacles: &Obstacles, pose: &Pose) -> Vec<f64> {
+    pub fn scan(&mut self, obstacles: &impl RayCaster, pose: &Pose) -> Vec<f64> {
         let angles = self.angles.clone();
         angles
             .iter()
-            .map(|&a| {
-                let d = obstacles
-                    .cast((pose.x, pose.y), pose.theta + a, self.max_range)
-                    .unwrap_or(self.max_range);
-                (d + self.noise()).clamp(0.0, self.max_range)
-            })
+            .map(|&a| self.read(obstacles, (pose.x, pose.y), pose.theta + a).range)
             .collect()
+    }
+
+    /// One ray from `origin` along the absolute heading `angle`: its noisy
+    /// range, clamped to `[0, max_range]`, and the surface it hit (`None`
+    /// when nothing lies within `max_range`).
+    pub fn read(&mut self, caster: &impl RayCaster, origin: (f64, f64), angle: f64) -> Reading {
+        let hit = caster.cast_surface(origin, angle, self.max_range);
+        let range = hit.map_or(self.max_range, |h| h.0);
+        Reading {
+            range: (range + self.noise()).clamp(0.0, self.max_range),
+            surface: hit.map(|h| h.1),
+        }
     }
 
     /// A normal sample of the noise (Box–Muller).
@@ -87,6 +104,7 @@ impl RangeSensor {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::Obstacles;
     use oxcover_grid::io::parse_ascii;
 
     #[test]

@@ -24,12 +24,14 @@ use oxcover::planner::{PlanRequest, plan};
 use oxcover::render::{Scene, render_to_file};
 use oxcover::report::metric_rows;
 use oxcover_grid::components::components4;
-use oxcover_grid::{Cell, Coverability, DiscRobot, Grid, Occupancy, OccupancyGrid, Point};
+use oxcover_grid::io::write_ros_map;
+use oxcover_grid::{Cell, Coverability, DiscRobot, OccupancyGrid, Point};
 use oxcover_robot::{Limits, RobotSpec};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
-use serde::Deserialize;
+
+pub use oxcover_robot::world::{Shape, World};
 
 use super::dir;
 
@@ -73,136 +75,6 @@ pub const PAPER: [(&str, [(f64, f64); 4]); 3] = [
     ),
 ];
 
-/// An obstacle of a world file.
-#[derive(Clone, Debug, Deserialize)]
-pub enum Shape {
-    /// A simple polygon (vertices in order, convex or not).
-    Polygon(Vec<(f64, f64)>),
-    /// A disc.
-    Circle {
-        /// Centre (m).
-        centre: (f64, f64),
-        /// Radius (m).
-        radius: f64,
-    },
-    /// A rotated rectangle.
-    Rect {
-        /// Centre (m).
-        centre: (f64, f64),
-        /// Side lengths (m).
-        size: (f64, f64),
-        /// Rotation, counter-clockwise (degrees).
-        angle_deg: f64,
-    },
-}
-
-impl Shape {
-    /// Whether `p` lies inside.
-    #[must_use]
-    pub fn contains(&self, p: (f64, f64)) -> bool {
-        match self {
-            Self::Polygon(v) => inside_polygon(v, p),
-            Self::Circle { centre, radius } => (p.0 - centre.0).hypot(p.1 - centre.1) <= *radius,
-            Self::Rect {
-                centre,
-                size,
-                angle_deg,
-            } => {
-                let (s, c) = angle_deg.to_radians().sin_cos();
-                let (dx, dy) = (p.0 - centre.0, p.1 - centre.1);
-                let (u, v) = (c * dx + s * dy, -s * dx + c * dy);
-                u.abs() <= size.0 / 2.0 && v.abs() <= size.1 / 2.0
-            }
-        }
-    }
-}
-
-/// Even-odd rule.
-fn inside_polygon(v: &[(f64, f64)], p: (f64, f64)) -> bool {
-    let mut inside = false;
-    let n = v.len();
-    for i in 0..n {
-        let (a, b) = (v[i], v[(i + n - 1) % n]);
-        if (a.1 > p.1) != (b.1 > p.1) && p.0 < (b.0 - a.0) * (p.1 - a.1) / (b.1 - a.1) + a.0 {
-            inside = !inside;
-        }
-    }
-    inside
-}
-
-/// A test environment (a world file).
-#[derive(Clone, Debug, Deserialize)]
-pub struct World {
-    /// Name.
-    pub name: String,
-    /// Inner width (m).
-    pub width: f64,
-    /// Inner height (m).
-    pub height: f64,
-    /// Map resolution (m/cell).
-    pub resolution: f64,
-    /// Obstacles.
-    pub obstacles: Vec<Shape>,
-}
-
-impl World {
-    /// Reads a world file.
-    ///
-    /// # Errors
-    /// Unreadable or malformed files.
-    pub fn read(path: &Path) -> anyhow::Result<Self> {
-        let text = std::fs::read_to_string(path)?;
-        ron::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
-    }
-
-    /// The occupancy grid: a cell is occupied when its centre lies in an
-    /// obstacle or outside the room; one cell of wall all round.
-    #[must_use]
-    pub fn rasterise(&self) -> OccupancyGrid {
-        let r = self.resolution;
-        let w = (self.width / r).round() as usize + 2;
-        let h = (self.height / r).round() as usize + 2;
-        let mut map = OccupancyGrid::new(Grid::new(w, h, Occupancy::Free), r, Point::new(-r, -r));
-        let frame = *map.frame();
-        for cell in Grid::<()>::new(w, h, ()).cells() {
-            let c = frame.cell_center(cell);
-            let p = (c.x, c.y);
-            let outside = p.0 < 0.0 || p.1 < 0.0 || p.0 > self.width || p.1 > self.height;
-            if outside || self.obstacles.iter().any(|s| s.contains(p)) {
-                map.cells_mut()[cell] = Occupancy::Occupied;
-            }
-        }
-        map
-    }
-}
-
-/// Writes `map` as a ROS map (P5 PGM, 0 occupied / 254 free, and its yaml).
-///
-/// # Errors
-/// File writes.
-pub fn write_ros_map(map: &OccupancyGrid, pgm: &Path) -> anyhow::Result<()> {
-    let (w, h) = (map.width(), map.height());
-    let mut bytes = format!("P5\n{w} {h}\n255\n").into_bytes();
-    bytes.extend(map.cells().as_slice().iter().map(|o| match o {
-        Occupancy::Free => 254u8,
-        Occupancy::Occupied => 0,
-        Occupancy::Unknown => 205,
-    }));
-    std::fs::write(pgm, bytes)?;
-    let f = map.frame();
-    let yaml = format!(
-        "image: {}\nresolution: {}\norigin: [{}, {}, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
-        pgm.file_name()
-            .and_then(|n| n.to_str())
-            .unwrap_or("map.pgm"),
-        map.resolution(),
-        f.cell_center(Cell::new(h - 1, 0)).x - map.resolution() / 2.0,
-        f.cell_center(Cell::new(h - 1, 0)).y - map.resolution() / 2.0,
-    );
-    std::fs::write(pgm.with_extension("yaml"), yaml)?;
-    Ok(())
-}
-
 /// The environments: world files in name order.
 ///
 /// # Errors
@@ -211,7 +83,10 @@ pub fn worlds() -> anyhow::Result<Vec<World>> {
     let d = crate::root().join("fixtures/worlds/lee2011");
     let mut files: Vec<PathBuf> = crate::map_files(&d, &["ron"]);
     files.sort();
-    files.iter().map(|f| World::read(f)).collect()
+    files
+        .iter()
+        .map(|f| World::read(f).map_err(Into::into))
+        .collect()
 }
 
 /// The robot disc.
@@ -415,7 +290,7 @@ pub fn run() -> anyhow::Result<()> {
     let mut maps = Vec::new();
     for (e, w) in worlds.iter().enumerate() {
         let map = w.rasterise();
-        write_ros_map(&map, &maps_dir.join(format!("{}.pgm", w.name)))?;
+        write_ros_map(&map, &maps_dir.join(format!("{}.yaml", w.name)))?;
         for (s, p) in starts(&map, e)?.into_iter().enumerate() {
             for planner in PLANNERS {
                 jobs.push((e, s, p, planner));

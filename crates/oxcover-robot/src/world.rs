@@ -1,0 +1,810 @@
+//! Polygonal worlds: an outer boundary and obstacles (polygons, convex or
+//! not, discs and rotated rectangles), read from RON, rasterised to an
+//! occupancy grid, ray-cast with parry2d, and their exact critical points.
+//!
+//! ```ron
+//! (
+//!     name: "l_room",
+//!     width: 8.0, height: 6.0,      // extent [0, width] × [0, height] (m)
+//!     resolution: 0.025,            // cell size of the rasterised map (m)
+//!     // optional outer boundary; without it the extent is the room
+//!     boundary: Some([(0.0, 0.0), (8.0, 0.0), (8.0, 3.0), (4.0, 3.0), (4.0, 6.0), (0.0, 6.0)]),
+//!     obstacles: [
+//!         Polygon([(1.0, 1.0), (2.0, 1.0), (1.5, 2.0)]),
+//!         Circle(centre: (6.0, 1.5), radius: 0.4),
+//!         Rect(centre: (2.0, 4.5), size: (1.0, 0.5), angle_deg: 30.0),
+//!     ],
+//! )
+//! ```
+//!
+//! Metres, x right, y up (the map frame of the contract). The rasterised map
+//! has one cell of wall all round: its origin is `(-resolution, -resolution)`,
+//! and a cell is occupied when its centre lies in an obstacle or outside the
+//! boundary.
+//!
+//! **Critical points** ([`World::critical_points`]) are the points where a
+//! boundary curve is tangent to a slice `x = const`: the x-extremal vertices
+//! of the polygons (a vertical edge whose neighbours lie on one side counts
+//! once, as a segment) and the left and right points of discs. They are
+//! classified as the sensor-based planner classifies what it detects:
+//! [`Event::In`] where sweeping towards +x adds a free interval (a split or a
+//! birth), [`Event::Out`] where one goes (a merge or a death);
+//! [`Convexity::Convex`] where the obstacle bulges into free space,
+//! [`Convexity::Concave`] where free space bulges into the obstacle.
+
+use std::path::Path;
+
+use oxcover_grid::{Grid, Occupancy, OccupancyGrid, Point};
+use parry2d::math::{Pose, Vector};
+use parry2d::query::{Ray, RayCast};
+use parry2d::shape::{Ball, Polyline};
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::geometry::RayCaster;
+
+/// Largest rasterised map a world may ask for (cells).
+pub const MAX_CELLS: usize = 50_000_000;
+
+/// An obstacle of a world file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Shape {
+    /// A simple polygon: vertices in order (either orientation), convex or not.
+    Polygon(Vec<(f64, f64)>),
+    /// A disc.
+    Circle {
+        /// Centre (m).
+        centre: (f64, f64),
+        /// Radius (m).
+        radius: f64,
+    },
+    /// A rotated rectangle.
+    Rect {
+        /// Centre (m).
+        centre: (f64, f64),
+        /// Side lengths (m).
+        size: (f64, f64),
+        /// Rotation, counter-clockwise (degrees).
+        angle_deg: f64,
+    },
+}
+
+impl Shape {
+    /// Whether `p` lies inside (boundary included).
+    #[must_use]
+    pub fn contains(&self, p: (f64, f64)) -> bool {
+        match self {
+            Self::Polygon(v) => inside_polygon(v, p),
+            Self::Circle { centre, radius } => (p.0 - centre.0).hypot(p.1 - centre.1) <= *radius,
+            Self::Rect {
+                centre,
+                size,
+                angle_deg,
+            } => {
+                let (s, c) = angle_deg.to_radians().sin_cos();
+                let (dx, dy) = (p.0 - centre.0, p.1 - centre.1);
+                let (u, v) = (c * dx + s * dy, -s * dx + c * dy);
+                u.abs() <= size.0 / 2.0 && v.abs() <= size.1 / 2.0
+            }
+        }
+    }
+
+    /// The outline: a polygon's vertices, a rectangle's four corners, or a disc.
+    #[must_use]
+    pub fn outline(&self) -> Outline {
+        match self {
+            Self::Polygon(v) => Outline::Polygon(v.clone()),
+            Self::Circle { centre, radius } => Outline::Circle {
+                centre: *centre,
+                radius: *radius,
+            },
+            Self::Rect {
+                centre,
+                size,
+                angle_deg,
+            } => {
+                let (s, c) = angle_deg.to_radians().sin_cos();
+                let (hx, hy) = (size.0 / 2.0, size.1 / 2.0);
+                let corner = |u: f64, v: f64| (centre.0 + c * u - s * v, centre.1 + s * u + c * v);
+                Outline::Polygon(vec![
+                    corner(-hx, -hy),
+                    corner(hx, -hy),
+                    corner(hx, hy),
+                    corner(-hx, hy),
+                ])
+            }
+        }
+    }
+}
+
+/// A closed boundary curve.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Outline {
+    /// A closed polygon (the last vertex joins the first).
+    Polygon(Vec<(f64, f64)>),
+    /// A circle.
+    Circle {
+        /// Centre (m).
+        centre: (f64, f64),
+        /// Radius (m).
+        radius: f64,
+    },
+}
+
+/// Even-odd rule.
+fn inside_polygon(v: &[(f64, f64)], p: (f64, f64)) -> bool {
+    let mut inside = false;
+    let n = v.len();
+    for i in 0..n {
+        let (a, b) = (v[i], v[(i + n - 1) % n]);
+        if (a.1 > p.1) != (b.1 > p.1) && p.0 < (b.0 - a.0) * (p.1 - a.1) / (b.1 - a.1) + a.0 {
+            inside = !inside;
+        }
+    }
+    inside
+}
+
+/// A polygonal world (a world file).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct World {
+    /// Name.
+    pub name: String,
+    /// Width of the extent (m).
+    pub width: f64,
+    /// Height of the extent (m).
+    pub height: f64,
+    /// Cell size of the rasterised map (m).
+    pub resolution: f64,
+    /// Outer boundary, inside the extent; the extent itself when absent.
+    #[serde(default)]
+    pub boundary: Option<Vec<(f64, f64)>>,
+    /// Obstacles.
+    pub obstacles: Vec<Shape>,
+}
+
+/// Which way the free intervals of a slice change at a critical point, for a
+/// sweep towards +x.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Event {
+    /// A free interval appears: a cell splits around an obstacle, or one is born.
+    In,
+    /// A free interval goes: two cells merge past an obstacle, or one dies.
+    Out,
+}
+
+/// Whether the obstacle or the free space bulges at a critical point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Convexity {
+    /// The obstacle bulges into free space (an obstacle's leftmost or rightmost point).
+    Convex,
+    /// Free space bulges into the obstacle (the end of a pocket, a room's wall).
+    Concave,
+}
+
+/// A critical point's class.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub struct CriticalKind {
+    /// In or out.
+    pub event: Event,
+    /// Convex or concave.
+    pub convexity: Convexity,
+}
+
+impl CriticalKind {
+    /// The class of an x-extremum of a boundary: `open` is the side (+1 or
+    /// −1 along x) the boundary extends to from it, `obstacle_beyond` whether
+    /// the space just beyond the extremum on that side is obstacle.
+    #[must_use]
+    pub fn from_extremum(open: f64, obstacle_beyond: bool) -> Self {
+        Self {
+            event: if open > 0.0 { Event::In } else { Event::Out },
+            convexity: if obstacle_beyond {
+                Convexity::Convex
+            } else {
+                Convexity::Concave
+            },
+        }
+    }
+
+    /// `IN convex`, `OUT concave`, …
+    #[must_use]
+    pub fn label(&self) -> &'static str {
+        match (self.event, self.convexity) {
+            (Event::In, Convexity::Convex) => "IN convex",
+            (Event::In, Convexity::Concave) => "IN concave",
+            (Event::Out, Convexity::Convex) => "OUT convex",
+            (Event::Out, Convexity::Concave) => "OUT concave",
+        }
+    }
+}
+
+/// An exact critical point of a world.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TrueCriticalPoint {
+    /// The boundary point (m); for a vertical edge, its lower end.
+    pub at: (f64, f64),
+    /// For a vertical edge, its upper end; else the same as `at`.
+    pub to: (f64, f64),
+    /// Class.
+    pub kind: CriticalKind,
+    /// Which curve: 0 the outer boundary, `k` obstacle `k − 1`.
+    pub surface: usize,
+}
+
+impl TrueCriticalPoint {
+    /// Distance from `p` to the point (or to the vertical edge).
+    #[must_use]
+    pub fn distance(&self, p: (f64, f64)) -> f64 {
+        let (lo, hi) = (self.at.1.min(self.to.1), self.at.1.max(self.to.1));
+        let y = p.1.clamp(lo, hi);
+        (p.0 - self.at.0).hypot(p.1 - y)
+    }
+}
+
+impl World {
+    /// Reads and checks a world file.
+    ///
+    /// # Errors
+    /// [`Error::World`] naming the file and what is wrong with it.
+    pub fn read(path: &Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::World {
+            file: path.display().to_string(),
+            message: format!("cannot read it: {e}"),
+        })?;
+        Self::parse(&text, &path.display().to_string())
+    }
+
+    /// Parses and checks a world from RON text; `source` names it in errors.
+    ///
+    /// # Errors
+    /// [`Error::World`] for malformed RON or a world that fails [`World::check`].
+    pub fn parse(text: &str, source: &str) -> Result<Self> {
+        let world: Self = ron::from_str(text).map_err(|e| Error::World {
+            file: source.to_string(),
+            message: e.to_string(),
+        })?;
+        world.check().map_err(|message| Error::World {
+            file: source.to_string(),
+            message,
+        })?;
+        Ok(world)
+    }
+
+    /// Checks sizes, coordinates and shapes.
+    ///
+    /// # Errors
+    /// A message naming the field and what was expected.
+    pub fn check(&self) -> std::result::Result<(), String> {
+        let positive = |name: &str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(format!("{name} is {v}, expected a finite number above 0"))
+            }
+        };
+        positive("width", self.width)?;
+        positive("height", self.height)?;
+        positive("resolution", self.resolution)?;
+        let cells = (self.width / self.resolution + 2.0) * (self.height / self.resolution + 2.0);
+        if cells > MAX_CELLS as f64 {
+            return Err(format!(
+                "{} m x {} m at {} m per cell is {cells:.0} cells, more than {MAX_CELLS}",
+                self.width, self.height, self.resolution
+            ));
+        }
+        if let Some(b) = &self.boundary {
+            check_polygon(b).map_err(|m| format!("boundary: {m}"))?;
+            let eps = 1e-9 * (self.width + self.height);
+            if let Some(p) = b.iter().find(|p| {
+                p.0 < -eps || p.1 < -eps || p.0 > self.width + eps || p.1 > self.height + eps
+            }) {
+                return Err(format!(
+                    "boundary vertex ({}, {}) lies outside the extent [0, {}] x [0, {}]",
+                    p.0, p.1, self.width, self.height
+                ));
+            }
+        }
+        for (k, s) in self.obstacles.iter().enumerate() {
+            let name = format!("obstacle {}", k + 1);
+            match s {
+                Shape::Polygon(v) => check_polygon(v).map_err(|m| format!("{name}: {m}"))?,
+                Shape::Circle { centre, radius } => {
+                    finite_point(*centre).map_err(|m| format!("{name}: {m}"))?;
+                    positive(&format!("{name} radius"), *radius)?;
+                }
+                Shape::Rect {
+                    centre,
+                    size,
+                    angle_deg,
+                } => {
+                    finite_point(*centre).map_err(|m| format!("{name}: {m}"))?;
+                    positive(&format!("{name} width"), size.0)?;
+                    positive(&format!("{name} height"), size.1)?;
+                    if !angle_deg.is_finite() {
+                        return Err(format!("{name}: angle_deg is {angle_deg}"));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The outer boundary polygon (the extent's rectangle when none is given).
+    #[must_use]
+    pub fn boundary_polygon(&self) -> Vec<(f64, f64)> {
+        self.boundary.clone().unwrap_or_else(|| {
+            vec![
+                (0.0, 0.0),
+                (self.width, 0.0),
+                (self.width, self.height),
+                (0.0, self.height),
+            ]
+        })
+    }
+
+    /// Whether `p` is free: inside the boundary and in no obstacle.
+    #[must_use]
+    pub fn is_free(&self, p: (f64, f64)) -> bool {
+        let inside = match &self.boundary {
+            Some(b) => inside_polygon(b, p),
+            None => p.0 >= 0.0 && p.1 >= 0.0 && p.0 <= self.width && p.1 <= self.height,
+        };
+        inside && !self.obstacles.iter().any(|s| s.contains(p))
+    }
+
+    /// The occupancy grid: a cell is occupied when its centre is not free;
+    /// one cell of wall all round (origin `(-resolution, -resolution)`).
+    #[must_use]
+    pub fn rasterise(&self) -> OccupancyGrid {
+        let r = self.resolution;
+        let w = (self.width / r).round() as usize + 2;
+        let h = (self.height / r).round() as usize + 2;
+        let mut map = OccupancyGrid::new(Grid::new(w, h, Occupancy::Free), r, Point::new(-r, -r));
+        let frame = *map.frame();
+        for cell in Grid::<()>::new(w, h, ()).cells() {
+            let c = frame.cell_center(cell);
+            let p = (c.x, c.y);
+            let outside = p.0 < 0.0 || p.1 < 0.0 || p.0 > self.width || p.1 > self.height;
+            if outside || !self.is_free(p) {
+                map.cells_mut()[cell] = Occupancy::Occupied;
+            }
+        }
+        map
+    }
+
+    /// Every boundary curve: the outer boundary first, then the obstacles in order.
+    #[must_use]
+    pub fn outlines(&self) -> Vec<Outline> {
+        std::iter::once(Outline::Polygon(self.boundary_polygon()))
+            .chain(self.obstacles.iter().map(Shape::outline))
+            .collect()
+    }
+
+    /// The exact critical points for slices `x = const`, on the free space's
+    /// boundary (parts of obstacles outside the room or inside other
+    /// obstacles are skipped).
+    #[must_use]
+    pub fn critical_points(&self) -> Vec<TrueCriticalPoint> {
+        let scale = self.width.max(self.height);
+        let eps = 1e-6 * scale;
+        let mut out = Vec::new();
+        for (surface, outline) in self.outlines().into_iter().enumerate() {
+            let candidates: Vec<Extremum> = match &outline {
+                Outline::Circle { centre, radius } => vec![
+                    (
+                        (centre.0 - radius, centre.1),
+                        (centre.0 - radius, centre.1),
+                        1.0,
+                    ),
+                    (
+                        (centre.0 + radius, centre.1),
+                        (centre.0 + radius, centre.1),
+                        -1.0,
+                    ),
+                ],
+                Outline::Polygon(v) => polygon_extrema(v, eps),
+            };
+            for (at, to, open) in candidates {
+                let mid = ((at.0 + to.0) / 2.0, (at.1 + to.1) / 2.0);
+                let beyond = (mid.0 + open * 10.0 * eps, mid.1);
+                let before = (mid.0 - open * 10.0 * eps, mid.1);
+                // The curve's own interior just beyond the extremum.
+                let obstacle_beyond = match (&outline, surface) {
+                    (_, 0) => !self.boundary_contains(beyond),
+                    (Outline::Circle { centre, radius }, _) => {
+                        (beyond.0 - centre.0).hypot(beyond.1 - centre.1) <= *radius
+                    }
+                    (Outline::Polygon(v), _) => inside_polygon(v, beyond),
+                };
+                // On the free space's boundary: free space touches it on one side.
+                let free_side = if obstacle_beyond { before } else { beyond };
+                if !self.is_free(free_side) {
+                    continue;
+                }
+                out.push(TrueCriticalPoint {
+                    at,
+                    to,
+                    kind: CriticalKind::from_extremum(open, obstacle_beyond),
+                    surface,
+                });
+            }
+        }
+        out
+    }
+
+    fn boundary_contains(&self, p: (f64, f64)) -> bool {
+        match &self.boundary {
+            Some(b) => inside_polygon(b, p),
+            None => p.0 >= 0.0 && p.1 >= 0.0 && p.0 <= self.width && p.1 <= self.height,
+        }
+    }
+}
+
+/// An x-extremal plateau: lower end, upper end, the side (±1 in x) the
+/// curve extends to.
+type Extremum = ((f64, f64), (f64, f64), f64);
+
+/// The x-extremal plateaus of a closed polygon: `(lower end, upper end,
+/// open side)`.
+fn polygon_extrema(v: &[(f64, f64)], eps: f64) -> Vec<Extremum> {
+    let n = v.len();
+    let same = |a: (f64, f64), b: (f64, f64)| (a.0 - b.0).abs() <= eps;
+    // Start at a vertex whose predecessor has a different x, so no plateau
+    // wraps around the start.
+    let Some(start) = (0..n).find(|&i| !same(v[i], v[(i + n - 1) % n])) else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    let mut k = 0;
+    while k < n {
+        let i = (start + k) % n;
+        let mut j = k;
+        while j + 1 < n && same(v[(start + j + 1) % n], v[i]) {
+            j += 1;
+        }
+        let prev = v[(i + n - 1) % n];
+        let next = v[(start + j + 1) % n];
+        let x = v[i].0;
+        let open = if prev.0 > x && next.0 > x {
+            Some(1.0)
+        } else if prev.0 < x && next.0 < x {
+            Some(-1.0)
+        } else {
+            None
+        };
+        if let Some(open) = open {
+            let (a, b) = (v[i], v[(start + j) % n]);
+            let (lo, hi) = if a.1 <= b.1 { (a, b) } else { (b, a) };
+            out.push((lo, hi, open));
+        }
+        k = j + 1;
+    }
+    out
+}
+
+fn finite_point(p: (f64, f64)) -> std::result::Result<(), String> {
+    if p.0.is_finite() && p.1.is_finite() {
+        Ok(())
+    } else {
+        Err(format!("point ({}, {}) is not finite", p.0, p.1))
+    }
+}
+
+/// At least three finite vertices, a non-zero area, no edge crossing another.
+fn check_polygon(v: &[(f64, f64)]) -> std::result::Result<(), String> {
+    if v.len() < 3 {
+        return Err(format!(
+            "a polygon needs 3 vertices or more, got {}",
+            v.len()
+        ));
+    }
+    for &p in v {
+        finite_point(p)?;
+    }
+    let n = v.len();
+    let area: f64 = (0..n)
+        .map(|i| {
+            let (a, b) = (v[i], v[(i + 1) % n]);
+            a.0 * b.1 - b.0 * a.1
+        })
+        .sum::<f64>()
+        / 2.0;
+    if area.abs() < 1e-12 {
+        return Err("the polygon has no area".into());
+    }
+    for i in 0..n {
+        for j in i + 1..n {
+            // Neighbouring edges share a vertex; skip them.
+            if j == i + 1 || (i == 0 && j == n - 1) {
+                continue;
+            }
+            let (a, b) = (v[i], v[(i + 1) % n]);
+            let (c, d) = (v[j], v[(j + 1) % n]);
+            if segments_cross(a, b, c, d) {
+                return Err(format!(
+                    "edge {} crosses edge {} (the polygon must be simple)",
+                    i + 1,
+                    j + 1
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+fn orient(a: (f64, f64), b: (f64, f64), c: (f64, f64)) -> f64 {
+    (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0)
+}
+
+fn segments_cross(a: (f64, f64), b: (f64, f64), c: (f64, f64), d: (f64, f64)) -> bool {
+    let (d1, d2) = (orient(c, d, a), orient(c, d, b));
+    let (d3, d4) = (orient(a, b, c), orient(a, b, d));
+    (d1 * d2 < 0.0) && (d3 * d4 < 0.0)
+}
+
+/// A polygon edge and its surface.
+type Edge = ((f64, f64), (f64, f64), usize);
+
+/// A world's boundary curves for ray casts (parry2d) and exact clearances.
+pub struct WorldGeometry {
+    shapes: Vec<CurveShape>,
+    /// Every polygon edge with its surface, for exact distances.
+    segments: Vec<Edge>,
+    circles: Vec<((f64, f64), f64, usize)>,
+    world: World,
+}
+
+enum CurveShape {
+    Polyline(Polyline),
+    Ball((f64, f64), Ball),
+}
+
+impl std::fmt::Debug for WorldGeometry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("WorldGeometry")
+            .field("world", &self.world.name)
+            .field("curves", &self.shapes.len())
+            .finish()
+    }
+}
+
+impl WorldGeometry {
+    /// The curves of `world`.
+    #[must_use]
+    pub fn new(world: &World) -> Self {
+        let mut shapes = Vec::new();
+        let mut segments = Vec::new();
+        let mut circles = Vec::new();
+        for (surface, outline) in world.outlines().into_iter().enumerate() {
+            match outline {
+                Outline::Polygon(v) => {
+                    let n = v.len();
+                    for i in 0..n {
+                        segments.push((v[i], v[(i + 1) % n], surface));
+                    }
+                    let vertices = v
+                        .iter()
+                        .map(|p| Vector::new(p.0 as f32, p.1 as f32))
+                        .collect();
+                    let indices = (0..n as u32).map(|i| [i, (i + 1) % n as u32]).collect();
+                    shapes.push(CurveShape::Polyline(Polyline::new(vertices, Some(indices))));
+                }
+                Outline::Circle { centre, radius } => {
+                    circles.push((centre, radius, surface));
+                    shapes.push(CurveShape::Ball(centre, Ball::new(radius as f32)));
+                }
+            }
+        }
+        Self {
+            shapes,
+            segments,
+            circles,
+            world: world.clone(),
+        }
+    }
+
+    /// The world.
+    #[must_use]
+    pub fn world(&self) -> &World {
+        &self.world
+    }
+
+    /// Exact distance from `p` to the nearest boundary curve, and that
+    /// curve (0 the outer boundary, `k` obstacle `k − 1`); negative when `p`
+    /// is not free.
+    #[must_use]
+    pub fn clearance(&self, p: (f64, f64)) -> (f64, usize) {
+        let mut best = (f64::INFINITY, 0);
+        for &(a, b, s) in &self.segments {
+            let d = segment_distance(p, a, b);
+            if d < best.0 {
+                best = (d, s);
+            }
+        }
+        for &(c, r, s) in &self.circles {
+            let d = ((p.0 - c.0).hypot(p.1 - c.1) - r).abs();
+            if d < best.0 {
+                best = (d, s);
+            }
+        }
+        if !self.world.is_free(p) {
+            best.0 = -best.0;
+        }
+        best
+    }
+}
+
+impl RayCaster for WorldGeometry {
+    fn cast_surface(&self, origin: (f64, f64), angle: f64, max_range: f64) -> Option<(f64, usize)> {
+        let dir = Vector::new(angle.cos() as f32, angle.sin() as f32);
+        let mut best: Option<(f64, usize)> = None;
+        for (surface, shape) in self.shapes.iter().enumerate() {
+            let hit = match shape {
+                CurveShape::Polyline(p) => {
+                    let ray = Ray::new(Vector::new(origin.0 as f32, origin.1 as f32), dir);
+                    p.cast_ray(&Pose::IDENTITY, &ray, max_range as f32, false)
+                }
+                CurveShape::Ball(c, b) => {
+                    let ray = Ray::new(
+                        Vector::new((origin.0 - c.0) as f32, (origin.1 - c.1) as f32),
+                        dir,
+                    );
+                    b.cast_ray(&Pose::IDENTITY, &ray, max_range as f32, true)
+                }
+            };
+            if let Some(t) = hit {
+                let t = f64::from(t);
+                if best.is_none_or(|(d, _)| t < d) {
+                    best = Some((t, surface));
+                }
+            }
+        }
+        best
+    }
+}
+
+/// Distance from `p` to the segment `ab`.
+#[must_use]
+pub fn segment_distance(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 {
+        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p.0 - a.0 - t * dx).hypot(p.1 - a.1 - t * dy)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn world(text: &str) -> World {
+        World::parse(text, "test").unwrap()
+    }
+
+    #[test]
+    fn parses_rasterises_and_checks() {
+        let w = world(
+            "(name: \"t\", width: 4.0, height: 2.0, resolution: 0.5,
+              obstacles: [Rect(centre: (1.0, 1.0), size: (1.0, 1.0), angle_deg: 0.0)])",
+        );
+        let map = w.rasterise();
+        assert_eq!((map.width(), map.height()), (10, 6));
+        let free = map.free_mask();
+        assert_eq!(free.as_slice().iter().filter(|&&f| f).count(), 8 * 4 - 4);
+        for (text, needle) in [
+            (
+                "(name: \"t\", width: -1.0, height: 2.0, resolution: 0.5, obstacles: [])",
+                "width",
+            ),
+            (
+                "(name: \"t\", width: 1.0, height: 2.0, resolution: 0.0, obstacles: [])",
+                "resolution",
+            ),
+            (
+                "(name: \"t\", width: 1e9, height: 1e9, resolution: 0.01, obstacles: [])",
+                "cells",
+            ),
+            (
+                "(name: \"t\", width: 1.0, height: 2.0, obstacles: [])",
+                "resolution",
+            ),
+            (
+                "(name: \"t\", width: 4.0, height: 2.0, resolution: 0.5, obstacles: [Polygon([(0.0, 0.0), (1.0, 1.0)])])",
+                "obstacle 1",
+            ),
+            (
+                "(name: \"t\", width: 4.0, height: 2.0, resolution: 0.5, obstacles: [Polygon([(0.0, 0.0), (2.0, 2.0), (2.0, 0.0), (0.0, 1.0)])])",
+                "simple",
+            ),
+            (
+                "(name: \"t\", width: 4.0, height: 2.0, resolution: 0.5, obstacles: [Circle(centre: (1.0, 1.0), radius: NaN)])",
+                "radius",
+            ),
+            (
+                "(name: \"t\", width: 4.0, height: 2.0, resolution: 0.5, boundary: Some([(0.0, 0.0), (5.0, 0.0), (0.0, 2.0)]), obstacles: [])",
+                "outside the extent",
+            ),
+        ] {
+            let e = World::parse(text, "bad.ron").unwrap_err().to_string();
+            assert!(e.contains("bad.ron") && e.contains(needle), "{e}");
+        }
+    }
+
+    #[test]
+    fn critical_points_of_a_diamond_a_disc_and_a_room() {
+        let w = world(
+            "(name: \"t\", width: 10.0, height: 6.0, resolution: 0.1, obstacles: [
+                Polygon([(2.0, 3.0), (3.0, 2.0), (4.0, 3.0), (3.0, 4.0)]),
+                Circle(centre: (7.0, 3.0), radius: 1.0),
+            ])",
+        );
+        let cps = w.critical_points();
+        let find = |x: f64, y: f64| {
+            cps.iter()
+                .find(|c| c.distance((x, y)) < 1e-9)
+                .unwrap_or_else(|| panic!("no critical point at ({x}, {y}): {cps:?}"))
+                .kind
+                .label()
+        };
+        assert_eq!(cps.len(), 6, "{cps:?}");
+        assert_eq!(find(2.0, 3.0), "IN convex");
+        assert_eq!(find(4.0, 3.0), "OUT convex");
+        assert_eq!(find(6.0, 3.0), "IN convex");
+        assert_eq!(find(8.0, 3.0), "OUT convex");
+        // The room's walls are vertical edges: one critical segment each.
+        assert_eq!(find(0.0, 1.0), "IN concave");
+        assert_eq!(find(10.0, 5.0), "OUT concave");
+    }
+
+    #[test]
+    fn a_concave_obstacle_has_concave_critical_points() {
+        // A C opening to +x: outer left side (IN convex), the pocket's back
+        // (a vertical edge, IN concave: free space is born there), and the
+        // arms' right ends (vertical edges, OUT convex).
+        let w = world(
+            "(name: \"t\", width: 10.0, height: 10.0, resolution: 0.1, obstacles: [
+                Polygon([(2.0, 2.0), (6.0, 2.5), (6.0, 4.0), (4.0, 4.0), (4.0, 6.0), (6.0, 6.0), (6.0, 7.5), (2.0, 8.0)]),
+            ])",
+        );
+        let cps: Vec<_> = w
+            .critical_points()
+            .into_iter()
+            .filter(|c| c.surface == 1)
+            .collect();
+        let labels: Vec<_> = cps.iter().map(|c| (c.at, c.kind.label())).collect();
+        assert_eq!(cps.len(), 4, "{labels:?}");
+        assert!(labels.contains(&((4.0, 4.0), "IN concave")), "{labels:?}");
+        assert!(labels.contains(&((6.0, 2.5), "OUT convex")), "{labels:?}");
+        assert!(labels.contains(&((6.0, 6.0), "OUT convex")), "{labels:?}");
+    }
+
+    #[test]
+    fn rays_and_clearance_are_exact() {
+        let w = world(
+            "(name: \"t\", width: 10.0, height: 6.0, resolution: 0.1, obstacles: [
+                Polygon([(2.0, 3.0), (3.0, 2.0), (4.0, 3.0), (3.0, 4.0)]),
+                Circle(centre: (7.0, 3.0), radius: 1.0),
+            ])",
+        );
+        let g = WorldGeometry::new(&w);
+        let (d, s) = g.cast_surface((0.5, 3.0), 0.0, 20.0).unwrap();
+        assert!((d - 1.5).abs() < 1e-5 && s == 1, "{d} {s}");
+        let (d, s) = g.cast_surface((5.0, 3.0), 0.0, 20.0).unwrap();
+        assert!((d - 1.0).abs() < 1e-5 && s == 2, "{d} {s}");
+        let (d, s) = g
+            .cast_surface((5.0, 3.0), std::f64::consts::FRAC_PI_2, 20.0)
+            .unwrap();
+        assert!((d - 3.0).abs() < 1e-5 && s == 0, "{d} {s}");
+        assert!(
+            g.cast_surface((5.0, 3.0), std::f64::consts::FRAC_PI_2, 2.0)
+                .is_none()
+        );
+        let (c, s) = g.clearance((5.2, 3.0));
+        assert!((c - 0.8).abs() < 1e-12 && s == 2);
+        assert!(g.clearance((3.0, 3.0)).0 < 0.0);
+        assert!(g.clearance((-1.0, 3.0)).0 < 0.0);
+    }
+}
