@@ -52,6 +52,7 @@ pub mod planner;
 pub mod pso;
 pub mod rect_priority;
 mod route;
+pub mod sensor_bcd;
 pub mod smooth;
 pub mod stc;
 pub mod sweep;
