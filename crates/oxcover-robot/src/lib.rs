@@ -27,6 +27,8 @@
 //! - [`world`]: polygonal worlds (outer boundary, polygons convex or not,
 //!   discs, rectangles) read from RON, rasterised to occupancy grids,
 //!   ray-cast with parry2d, with exact clearances and exact critical points.
+//! - [`random_world`]: seeded random worlds of convex and concave polygons
+//!   with guaranteed passages, for property tests.
 //! - [`critical_point`]: seed 003's three-ray critical-point detector (the
 //!   dot-product test of its eqs. 1–3, with tolerances), classifying IN/OUT
 //!   and convex/concave.
@@ -55,6 +57,7 @@ pub mod energy;
 pub mod error;
 pub mod geometry;
 pub mod kinematics;
+pub mod random_world;
 pub mod sensors;
 pub mod simulate;
 pub mod spiral;
@@ -69,6 +72,7 @@ pub use energy::{EnergyModel, RobotSpec};
 pub use error::{Error, Result};
 pub use geometry::{Obstacles, RayCaster};
 pub use kinematics::{DiffDrive, Pose, wrap_angle};
+pub use random_world::{RandomWorldSpec, random_world};
 pub use sensors::{RangeSensor, Reading};
 pub use simulate::{Sample, simulate};
 pub use spiral::ArchimedeanSpiral;

@@ -14,6 +14,7 @@
 //!         Circle(centre: (6.0, 1.5), radius: 0.4),
 //!         Rect(centre: (2.0, 4.5), size: (1.0, 0.5), angle_deg: 30.0),
 //!     ],
+//!     start: Some((0.5, 0.5)),      // optional: where experiments start
 //! )
 //! ```
 //!
@@ -160,6 +161,9 @@ pub struct World {
     pub boundary: Option<Vec<(f64, f64)>>,
     /// Obstacles.
     pub obstacles: Vec<Shape>,
+    /// A start position for experiments (m), if the file names one.
+    #[serde(default)]
+    pub start: Option<(f64, f64)>,
 }
 
 /// Which way the free intervals of a slice change at a critical point, for a
@@ -285,6 +289,9 @@ impl World {
         positive("width", self.width)?;
         positive("height", self.height)?;
         positive("resolution", self.resolution)?;
+        if let Some(p) = self.start {
+            finite_point(p).map_err(|m| format!("start: {m}"))?;
+        }
         let cells = (self.width / self.resolution + 2.0) * (self.height / self.resolution + 2.0);
         if cells > MAX_CELLS as f64 {
             return Err(format!(
@@ -382,74 +389,93 @@ impl World {
 
     /// The exact critical points for slices `x = const`, on the free space's
     /// boundary (parts of obstacles outside the room or inside other
-    /// obstacles are skipped).
+    /// obstacles are skipped). Consecutive vertices whose x differ by at
+    /// most `x_tolerance` (m) form one stretch parallel to the slices: a
+    /// critical segment when the curve goes on to the same side at both
+    /// ends, nothing otherwise. With a tolerance of 0 only exactly vertical
+    /// edges are such stretches; a sensor with a hysteresis along x cannot
+    /// tell shallower features apart, so it is compared with that tolerance.
     #[must_use]
-    pub fn critical_points(&self) -> Vec<TrueCriticalPoint> {
+    pub fn critical_points(&self, x_tolerance: f64) -> Vec<TrueCriticalPoint> {
         let scale = self.width.max(self.height);
-        let eps = 1e-6 * scale;
+        let eps = (1e-6 * scale).max(x_tolerance);
+        let nudge = 1e-5 * scale;
         let mut out = Vec::new();
         for (surface, outline) in self.outlines().into_iter().enumerate() {
             let candidates: Vec<Extremum> = match &outline {
-                Outline::Circle { centre, radius } => vec![
-                    (
-                        (centre.0 - radius, centre.1),
-                        (centre.0 - radius, centre.1),
-                        1.0,
-                    ),
-                    (
-                        (centre.0 + radius, centre.1),
-                        (centre.0 + radius, centre.1),
-                        -1.0,
-                    ),
-                ],
-                Outline::Polygon(v) => polygon_extrema(v, eps),
+                Outline::Circle { centre, radius } => [1.0, -1.0]
+                    .iter()
+                    .map(|&open| {
+                        let p = (centre.0 - open * radius, centre.1);
+                        Extremum {
+                            lo: p,
+                            hi: p,
+                            open,
+                            convex: true,
+                            free_probe: (p.0 - open * nudge, p.1),
+                        }
+                    })
+                    .collect(),
+                Outline::Polygon(v) => polygon_extrema(v, eps, surface != 0, nudge),
             };
-            for (at, to, open) in candidates {
-                let mid = ((at.0 + to.0) / 2.0, (at.1 + to.1) / 2.0);
-                let beyond = (mid.0 + open * 10.0 * eps, mid.1);
-                let before = (mid.0 - open * 10.0 * eps, mid.1);
-                // The curve's own interior just beyond the extremum.
-                let obstacle_beyond = match (&outline, surface) {
-                    (_, 0) => !self.boundary_contains(beyond),
-                    (Outline::Circle { centre, radius }, _) => {
-                        (beyond.0 - centre.0).hypot(beyond.1 - centre.1) <= *radius
-                    }
-                    (Outline::Polygon(v), _) => inside_polygon(v, beyond),
-                };
-                // On the free space's boundary: free space touches it on one side.
-                let free_side = if obstacle_beyond { before } else { beyond };
-                if !self.is_free(free_side) {
-                    continue;
+            for e in candidates {
+                // Only points on the free space's boundary count.
+                if self.is_free(e.free_probe) {
+                    out.push(TrueCriticalPoint {
+                        at: e.lo,
+                        to: e.hi,
+                        kind: CriticalKind::from_extremum(e.open, e.convex),
+                        surface,
+                    });
                 }
-                out.push(TrueCriticalPoint {
-                    at,
-                    to,
-                    kind: CriticalKind::from_extremum(open, obstacle_beyond),
-                    surface,
-                });
             }
         }
         out
     }
-
-    fn boundary_contains(&self, p: (f64, f64)) -> bool {
-        match &self.boundary {
-            Some(b) => inside_polygon(b, p),
-            None => p.0 >= 0.0 && p.1 >= 0.0 && p.0 <= self.width && p.1 <= self.height,
-        }
-    }
 }
 
-/// An x-extremal plateau: lower end, upper end, the side (±1 in x) the
-/// curve extends to.
-type Extremum = ((f64, f64), (f64, f64), f64);
+/// An x-extremal stretch of a boundary curve.
+struct Extremum {
+    /// Lower end.
+    lo: (f64, f64),
+    /// Upper end.
+    hi: (f64, f64),
+    /// The side (±1 in x) the curve extends to.
+    open: f64,
+    /// Whether the obstacle bulges there.
+    convex: bool,
+    /// A point just off the extreme vertex on the free side.
+    free_probe: (f64, f64),
+}
 
-/// The x-extremal plateaus of a closed polygon: `(lower end, upper end,
-/// open side)`.
-fn polygon_extrema(v: &[(f64, f64)], eps: f64) -> Vec<Extremum> {
+/// The x-extremal stretches of a closed polygon: runs of consecutive
+/// vertices within `eps` in x whose neighbours both lie on one side.
+/// `obstacle` says whether the polygon's interior is an obstacle (else it is
+/// the outer boundary, its interior free).
+fn polygon_extrema(v: &[(f64, f64)], eps: f64, obstacle: bool, nudge: f64) -> Vec<Extremum> {
     let n = v.len();
     let same = |a: (f64, f64), b: (f64, f64)| (a.0 - b.0).abs() <= eps;
-    // Start at a vertex whose predecessor has a different x, so no plateau
+    let orientation = (0..n)
+        .map(|i| {
+            let (a, b) = (v[i], v[(i + 1) % n]);
+            a.0 * b.1 - b.0 * a.1
+        })
+        .sum::<f64>()
+        .signum();
+    let at = |k: usize| v[k % n];
+    // Normal of the edge `a → b` pointing into free space.
+    let free_normal = |a: (f64, f64), b: (f64, f64)| {
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        let l = dx.hypot(dy);
+        // Right of the edge is outside a counter-clockwise polygon.
+        let out = if orientation > 0.0 {
+            (dy / l, -dx / l)
+        } else {
+            (-dy / l, dx / l)
+        };
+        if obstacle { out } else { (-out.0, -out.1) }
+    };
+    // Start at a vertex whose predecessor has a different x, so no stretch
     // wraps around the start.
     let Some(start) = (0..n).find(|&i| !same(v[i], v[(i + n - 1) % n])) else {
         return Vec::new();
@@ -457,26 +483,52 @@ fn polygon_extrema(v: &[(f64, f64)], eps: f64) -> Vec<Extremum> {
     let mut out = Vec::new();
     let mut k = 0;
     while k < n {
-        let i = (start + k) % n;
+        let i = start + k;
         let mut j = k;
-        while j + 1 < n && same(v[(start + j + 1) % n], v[i]) {
+        while j + 1 < n && same(at(start + j + 1), at(i)) {
             j += 1;
         }
-        let prev = v[(i + n - 1) % n];
-        let next = v[(start + j + 1) % n];
-        let x = v[i].0;
+        let last = start + j;
+        let (prev, next) = (at(i + n - 1), at(last + 1));
+        let x = at(i).0;
         let open = if prev.0 > x && next.0 > x {
-            Some(1.0)
+            1.0
         } else if prev.0 < x && next.0 < x {
-            Some(-1.0)
+            -1.0
         } else {
-            None
+            k = j + 1;
+            continue;
         };
-        if let Some(open) = open {
-            let (a, b) = (v[i], v[(start + j) % n]);
-            let (lo, hi) = if a.1 <= b.1 { (a, b) } else { (b, a) };
-            out.push((lo, hi, open));
-        }
+        // Total turn along prev → stretch → next: about ±π; a turn the
+        // polygon's own way is a convex corner of the polygon.
+        let turn: f64 = (i..=last)
+            .map(|m| {
+                let (p, c, q) = (at(m + n - 1), at(m), at(m + 1));
+                let (d1, d2) = ((c.0 - p.0, c.1 - p.1), (q.0 - c.0, q.1 - c.1));
+                (d1.0 * d2.1 - d1.1 * d2.0).atan2(d1.0 * d2.0 + d1.1 * d2.1)
+            })
+            .sum();
+        let polygon_convex = turn * orientation > 0.0;
+        // The stretch's extreme vertex, and a probe off it into free space.
+        let e = (i..=last)
+            .min_by(|&a, &b| (open * at(a).0).total_cmp(&(open * at(b).0)))
+            .unwrap_or(i);
+        let (n1, n2) = (
+            free_normal(at(e + n - 1), at(e)),
+            free_normal(at(e), at(e + 1)),
+        );
+        let (sx, sy) = (n1.0 + n2.0, n1.1 + n2.1);
+        let l = sx.hypot(sy);
+        let dir = if l > 1e-9 { (sx / l, sy / l) } else { n1 };
+        let (a, b) = (at(i), at(last));
+        let (lo, hi) = if a.1 <= b.1 { (a, b) } else { (b, a) };
+        out.push(Extremum {
+            lo,
+            hi,
+            open,
+            convex: polygon_convex == obstacle,
+            free_probe: (at(e).0 + nudge * dir.0, at(e).1 + nudge * dir.1),
+        });
         k = j + 1;
     }
     out
@@ -536,7 +588,7 @@ fn orient(a: (f64, f64), b: (f64, f64), c: (f64, f64)) -> f64 {
     (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0)
 }
 
-fn segments_cross(a: (f64, f64), b: (f64, f64), c: (f64, f64), d: (f64, f64)) -> bool {
+pub(crate) fn segments_cross(a: (f64, f64), b: (f64, f64), c: (f64, f64), d: (f64, f64)) -> bool {
     let (d1, d2) = (orient(c, d, a), orient(c, d, b));
     let (d3, d4) = (orient(a, b, c), orient(a, b, d));
     (d1 * d2 < 0.0) && (d3 * d4 < 0.0)
@@ -741,7 +793,7 @@ mod tests {
                 Circle(centre: (7.0, 3.0), radius: 1.0),
             ])",
         );
-        let cps = w.critical_points();
+        let cps = w.critical_points(0.0);
         let find = |x: f64, y: f64| {
             cps.iter()
                 .find(|c| c.distance((x, y)) < 1e-9)
@@ -754,6 +806,33 @@ mod tests {
         assert_eq!(find(4.0, 3.0), "OUT convex");
         assert_eq!(find(6.0, 3.0), "IN convex");
         assert_eq!(find(8.0, 3.0), "OUT convex");
+        // A thin spike whose wedge lies wholly below its tip is still convex.
+        let spike = world(
+            "(name: \"t\", width: 4.0, height: 4.0, resolution: 0.1, obstacles: [
+                Polygon([(1.0, 2.0), (3.0, 1.5), (3.0, 1.0)])])",
+        );
+        let tip = spike.critical_points(0.0);
+        let tip = tip
+            .iter()
+            .find(|c| c.surface == 1 && c.at == (1.0, 2.0))
+            .unwrap();
+        assert_eq!(tip.kind.label(), "IN convex");
+        // A nearly vertical edge is one stretch within a tolerance.
+        let bent = world(
+            "(name: \"t\", width: 6.0, height: 6.0, resolution: 0.1, obstacles: [
+                Polygon([(1.0, 1.0), (3.0, 1.0), (3.0, 2.0), (2.0, 2.0), (2.003, 3.0), (2.0, 4.0), (3.0, 4.0), (3.0, 5.0), (1.0, 5.0)])])",
+        );
+        let on_obstacle = |tol: f64| {
+            bent.critical_points(tol)
+                .iter()
+                .filter(|c| c.surface == 1)
+                .count()
+        };
+        // Exactly: the U's back and its two arm ends, and the back wall's
+        // 3 mm wiggle (x-min, x-max, x-min); within 5 mm the wall is one
+        // stretch, one critical point.
+        assert_eq!(on_obstacle(0.0), 6);
+        assert_eq!(on_obstacle(0.005), 4);
         // The room's walls are vertical edges: one critical segment each.
         assert_eq!(find(0.0, 1.0), "IN concave");
         assert_eq!(find(10.0, 5.0), "OUT concave");
@@ -770,7 +849,7 @@ mod tests {
             ])",
         );
         let cps: Vec<_> = w
-            .critical_points()
+            .critical_points(0.0)
             .into_iter()
             .filter(|c| c.surface == 1)
             .collect();

@@ -47,6 +47,9 @@ pub(crate) struct Body<'w> {
     pub keep: f64,
     step: f64,
     lap_step: f64,
+    /// Readings this much inside the kept distance beside a lap are noise (m).
+    beside: f64,
+    noise_sd: f64,
     /// Position (m).
     pub p: (f64, f64),
     heading: f64,
@@ -81,9 +84,15 @@ impl<'w> Body<'w> {
             value: e.to_string(),
             expected: "a valid ring of rays",
         };
-        let ring = RangeSensor::ring(cfg.rays, cfg.max_range, cfg.noise_sd, cfg.seed).map_err(bad)?;
-        let probe = RangeSensor::ring(1, cfg.max_range, cfg.noise_sd, cfg.seed ^ 0x9e37_79b9_7f4a_7c15)
-            .map_err(bad)?;
+        let ring =
+            RangeSensor::ring(cfg.rays, cfg.max_range, cfg.noise_sd, cfg.seed).map_err(bad)?;
+        let probe = RangeSensor::ring(
+            1,
+            cfg.max_range,
+            cfg.noise_sd,
+            cfg.seed ^ 0x9e37_79b9_7f4a_7c15,
+        )
+        .map_err(bad)?;
         let keep = cfg.robot_radius + cfg.margin;
         let mut body = Self {
             world,
@@ -91,6 +100,8 @@ impl<'w> Body<'w> {
             keep,
             step: cfg.step,
             lap_step: (2.5 * cfg.step).min(keep / 2.0),
+            beside: 3.0 * cfg.noise_sd,
+            noise_sd: cfg.noise_sd,
             p: start,
             heading: 0.0,
             ring_angles: ring.angles.clone(),
@@ -207,7 +218,8 @@ impl<'w> Body<'w> {
             for h in &near {
                 let along = (h.1 - self.p.1) * dir_y;
                 let lat = (h.0 - self.p.0).abs();
-                if along > 0.0 && lat < self.keep {
+                // A wall beside the lap, read short by noise, is not ahead.
+                if along > 0.0 && lat < self.keep - self.beside {
                     free = free.min(along - (self.keep * self.keep - lat * lat).sqrt());
                 }
             }
@@ -221,7 +233,10 @@ impl<'w> Body<'w> {
 
     /// The next boundary-following position with the boundary on the right
     /// (`turn` = +1) or on the left (`turn` = −1), or `None` when lost or
-    /// boxed in.
+    /// boxed in. Where noise leaves no step that keeps `r + δ` from every
+    /// sensed point (a gap within noise of the robot's width), the distance
+    /// kept is relaxed in steps of one noise deviation, never below `r`
+    /// plus a third of `δ`.
     pub(crate) fn follow_target(&self, turn: f64) -> Option<(f64, f64)> {
         let near = self.near(self.keep + self.step + 0.15);
         let nearest = near.iter().min_by(|a, b| {
@@ -230,21 +245,31 @@ impl<'w> Body<'w> {
             da.total_cmp(&db)
         })?;
         let phi0 = (nearest.1 - self.p.1).atan2(nearest.0 - self.p.0);
-        let keep2 = self.keep * self.keep - 1e-12;
         let steps = (TAU / TURN_STEP) as usize;
-        (0..steps).find_map(|k| {
-            let phi = phi0 + turn * k as f64 * TURN_STEP;
-            let q = (self.p.0 + self.step * phi.cos(), self.p.1 + self.step * phi.sin());
-            near.iter()
-                .all(|h| (h.0 - q.0).powi(2) + (h.1 - q.1).powi(2) >= keep2)
-                .then_some(q)
-        })
+        let floor = self.r + (self.keep - self.r) / 3.0;
+        let mut keep = self.keep;
+        loop {
+            let keep2 = keep * keep - 1e-12;
+            let found = (0..steps).find_map(|k| {
+                let phi = phi0 + turn * k as f64 * TURN_STEP;
+                let q = (
+                    self.p.0 + self.step * phi.cos(),
+                    self.p.1 + self.step * phi.sin(),
+                );
+                near.iter()
+                    .all(|h| (h.0 - q.0).powi(2) + (h.1 - q.1).powi(2) >= keep2)
+                    .then_some(q)
+            });
+            if found.is_some() || self.noise_sd == 0.0 || keep <= floor {
+                return found;
+            }
+            keep = (keep - self.noise_sd).max(floor);
+        }
     }
 
-    /// Fires the three-ray detector from the current position towards the
-    /// boundary along x (`towards` = ±1).
-    pub(crate) fn detect(&mut self, towards: f64) -> Option<oxcover_robot::Returns> {
-        let angle = if towards > 0.0 { 0.0 } else { std::f64::consts::PI };
+    /// Fires the three-ray detector from the current position, the centre
+    /// ray at the absolute heading `angle`.
+    pub(crate) fn detect(&mut self, angle: f64) -> Option<oxcover_robot::Returns> {
         let det = self.detector;
         det.fire(&mut self.probe, self.world, self.p, angle)
     }
@@ -259,7 +284,10 @@ impl<'w> Body<'w> {
                     break;
                 }
                 let s = d.min(self.lap_step) / d;
-                let next = (self.p.0 + s * (q.0 - self.p.0), self.p.1 + s * (q.1 - self.p.1));
+                let next = (
+                    self.p.0 + s * (q.0 - self.p.0),
+                    self.p.1 + s * (q.1 - self.p.1),
+                );
                 self.advance(next, State::Transit)?;
             }
         }

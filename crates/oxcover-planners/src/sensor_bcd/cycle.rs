@@ -23,9 +23,9 @@
 
 use oxcover_robot::{CriticalKind, Detection};
 
+use super::Config;
 use super::body::Body;
 use super::reeb::{Reeb, SlabRecord};
-use super::Config;
 use crate::error::{Error, Result};
 
 /// Follower steps before a run may leave through the slice it started on.
@@ -66,6 +66,9 @@ pub struct Counters {
     pub travel_m: f64,
     /// Work items the robot could not reach on its own map.
     pub unreached: usize,
+    /// Cycles closed because the follower came back to an exit it had
+    /// already passed, not to the start interval (noise at a grazing slice).
+    pub forced_closures: usize,
 }
 
 /// The exploration state.
@@ -89,8 +92,8 @@ impl<'w> Explorer<'w> {
             counters: Counters::default(),
             x0,
             w: 2.0 * cfg.tool_radius,
-            hysteresis: (4.0 * cfg.noise_sd).max(0.01),
-            close: (6.0 * cfg.noise_sd).max(0.03),
+            hysteresis: cfg.x_hysteresis(),
+            close: (10.0 * cfg.noise_sd).max(0.03),
             step: cfg.step,
         }
     }
@@ -162,7 +165,6 @@ impl<'w> Explorer<'w> {
         let b = a + s as i64;
         let (xi_a, xi_b) = (s * self.slice_x(a), s * self.slice_x(b));
         let start = self.reeb.intervals[k].clone();
-        let other = if top { start.lo } else { start.hi };
         // Boundary on the left (turn clockwise) from an upper end heading +x…
         let turn = if top { -s } else { s };
         let mut record = SlabRecord {
@@ -171,18 +173,41 @@ impl<'w> Explorer<'w> {
             criticals: Vec::new(),
         };
         let mut from_a = true;
+        if std::env::var("BCD_DEBUG").is_ok() {
+            eprintln!(
+                "CYCLE from interval {k} slice {a} s {s} top {top} at ({:.3},{:.3}) x_a {:.3} x_b {:.3}",
+                self.body.p.0,
+                self.body.p.1,
+                self.slice_x(a),
+                self.slice_x(b)
+            );
+        }
+        let mut exits: Vec<(Exit, f64)> = Vec::new();
         for _ in 0..MAX_RUNS {
             let exit = self.follow_run(turn, s, xi_a, xi_b, from_a, &mut record)?;
             let p = self.body.p;
-            if exit == Exit::A
-                && p.1 >= start.lo.1 - self.close
-                && p.1 <= start.hi.1 + self.close
-                && ((p.1 - other.1).abs() < self.close
-                    || (p.1 - if top { start.hi.1 } else { start.lo.1 }).abs() < self.close)
-            {
+            if std::env::var("BCD_DEBUG").is_ok() {
+                eprintln!("  exit {exit:?} at ({:.3},{:.3})", p.0, p.1);
+            }
+            // Back on the start interval's stretch of slice a: closed. (Its
+            // ends, not only the one opposite the start: where the boundary
+            // is steep, noise moves the crossing along the slice.)
+            if exit == Exit::A && p.1 >= start.lo.1 - self.close && p.1 <= start.hi.1 + self.close {
                 self.finish(record, a, s);
                 return Ok(());
             }
+            // An exit seen before in this cycle: the loop is closed too (a
+            // slice grazing a boundary within noise can make the follower
+            // miss the start's stretch).
+            if exits
+                .iter()
+                .any(|&(e, y)| e == exit && (y - p.1).abs() < self.close)
+            {
+                self.counters.forced_closures += 1;
+                self.finish(record, a, s);
+                return Ok(());
+            }
+            exits.push((exit, p.1));
             // Lap along the slice, away from the boundary just followed.
             let dir = turn * self.body_heading_x().signum();
             let q = self.body.lap(dir)?;
@@ -236,6 +261,8 @@ impl<'w> Explorer<'w> {
     ) -> Result<Exit> {
         let mut trend = if from_a { 1.0 } else { -1.0 };
         let mut ext = self.extreme(s);
+        // (ξ, y) of the positions since the last turning point.
+        let mut since = vec![(ext.xi, ext.robot.1)];
         let mut moved = 0.0;
         let guard = START_GUARD_STEPS * self.step;
         loop {
@@ -269,27 +296,30 @@ impl<'w> Explorer<'w> {
             self.body.advance(target, state)?;
             moved += self.step;
             let xi = s * self.body.p.0;
+            since.push((xi, self.body.p.1));
             if trend > 0.0 {
                 if xi > ext.xi {
                     ext = self.extreme(s);
                 } else if ext.xi - xi > self.hysteresis {
-                    self.turning_point(ext, true, s, record);
+                    self.turning_point(ext, &since, true, s, record);
                     trend = -1.0;
                     ext = self.extreme(s);
+                    since = vec![(xi, self.body.p.1)];
                 }
             } else if xi < ext.xi {
                 ext = self.extreme(s);
             } else if xi - ext.xi > self.hysteresis {
-                self.turning_point(ext, false, s, record);
+                self.turning_point(ext, &since, false, s, record);
                 trend = 1.0;
                 ext = self.extreme(s);
+                since = vec![(xi, self.body.p.1)];
             }
             if let Some((e, _)) = exit {
                 // Leaving by slice a means going −ξ, by b going +ξ; a missing
                 // turn was shallower than the hysteresis.
                 let want = if e == Exit::A { -1.0 } else { 1.0 };
                 if trend != want {
-                    self.turning_point(ext, trend > 0.0, s, record);
+                    self.turning_point(ext, &since, trend > 0.0, s, record);
                 }
                 return Ok(e);
             }
@@ -303,7 +333,19 @@ impl<'w> Explorer<'w> {
         let nearest = self.body.nearest.map_or(p, |n| n.0);
         let dx = nearest.0 - p.0;
         let towards = if dx.abs() > 1e-6 { dx.signum() } else { s };
-        let returns = self.body.detect(towards);
+        // Fired along x; when that ray grazes past a thin tip (it returns
+        // much farther than the nearest point), aimed at the nearest point.
+        let keep = self.body.keep;
+        let far =
+            |r: &oxcover_robot::Returns| (r.centre.0 - p.0).hypot(r.centre.1 - p.1) > 2.0 * keep;
+        let mut returns = self.body.detect(if towards > 0.0 {
+            0.0
+        } else {
+            std::f64::consts::PI
+        });
+        if returns.as_ref().is_none_or(far) {
+            returns = self.body.detect((nearest.1 - p.1).atan2(nearest.0 - p.0));
+        }
         let detection = returns.map_or(Detection::Blind, |r| self.body.detector.classify(p, &r));
         Extreme {
             xi: s * p.0,
@@ -315,7 +357,29 @@ impl<'w> Explorer<'w> {
     }
 
     /// Records a turning point: a maximum of ξ = s·x when `is_max`.
-    fn turning_point(&mut self, e: Extreme, is_max: bool, s: f64, record: &mut SlabRecord) {
+    /// `since` holds (ξ, y) of the run since the last turning point: the
+    /// stretch within the hysteresis of the extreme around it is the
+    /// critical stretch (a wall along y gives a long one).
+    fn turning_point(
+        &mut self,
+        e: Extreme,
+        since: &[(f64, f64)],
+        is_max: bool,
+        s: f64,
+        record: &mut SlabRecord,
+    ) {
+        let at = since
+            .iter()
+            .position(|&(xi, y)| xi == e.xi && y == e.robot.1)
+            .unwrap_or(0);
+        let near = |k: &usize| (since[*k].0 - e.xi).abs() <= self.hysteresis;
+        let first = (0..=at).rev().take_while(near).last().unwrap_or(at);
+        let last = (at..since.len()).take_while(near).last().unwrap_or(at);
+        let ys = since[first..=last].iter().map(|p| p.1);
+        let span = (
+            ys.clone().fold(f64::INFINITY, f64::min),
+            ys.fold(f64::NEG_INFINITY, f64::max),
+        );
         // The boundary continues towards −ξ from a maximum.
         let open = if is_max { -s } else { s };
         let follower = CriticalKind::from_extremum(open, e.towards == open);
@@ -330,7 +394,15 @@ impl<'w> Explorer<'w> {
         if confirmed {
             self.counters.confirmed += 1;
         }
-        let id = self.reeb.critical(e.contact, e.robot, kind, confirmed);
+        if std::env::var("BCD_DEBUG").is_ok() {
+            eprintln!(
+                "TP robot ({:.3},{:.3}) contact ({:.3},{:.3}) max {is_max} s {s} towards {} {:?} slab {}",
+                e.robot.0, e.robot.1, e.contact.0, e.contact.1, e.towards, e.detection, record.left
+            );
+        }
+        let id = self
+            .reeb
+            .critical(e.contact, e.robot, span, kind, confirmed, self.hysteresis);
         if !record.criticals.contains(&id) {
             record.criticals.push(id);
         }

@@ -163,6 +163,15 @@ impl Default for Config {
 }
 
 impl Config {
+    /// The hysteresis along x of turning-point detection (m): four standard
+    /// deviations of the range noise, at least 3 mm. Features of the
+    /// boundary shallower than this along x are not told from noise; compare
+    /// with [`oxcover_robot::World::critical_points`] at this tolerance.
+    #[must_use]
+    pub fn x_hysteresis(&self) -> f64 {
+        (4.0 * self.noise_sd).max(0.003)
+    }
+
     /// Checks every setting.
     ///
     /// # Errors

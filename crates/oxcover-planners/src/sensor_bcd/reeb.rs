@@ -52,6 +52,9 @@ pub struct DetectedCritical {
     pub at: (f64, f64),
     /// Where the robot was (m).
     pub robot: (f64, f64),
+    /// The robot's y range along the stretch it followed within the
+    /// hysteresis of this extreme (a point, or a wall along y).
+    pub span: (f64, f64),
     /// Class.
     pub kind: CriticalKind,
     /// Whether the three-ray detector gave this class on its own (else the
@@ -116,19 +119,26 @@ impl Reeb {
         })
     }
 
-    /// Adds a detection, or returns the known critical point it repeats.
+    /// Adds a detection, or returns the known critical point it repeats:
+    /// one whose contact lies within [`SAME_POINT`], or whose stretch lies
+    /// on the same wall along y (robot x within twice the hysteresis, y
+    /// ranges overlapping).
     pub(crate) fn critical(
         &mut self,
         at: (f64, f64),
         robot: (f64, f64),
+        span: (f64, f64),
         kind: CriticalKind,
         confirmed: bool,
+        hysteresis: f64,
     ) -> usize {
-        if let Some(c) = self
-            .criticals
-            .iter()
-            .find(|c| (c.at.0 - at.0).hypot(c.at.1 - at.1) < SAME_POINT)
-        {
+        if let Some(c) = self.criticals.iter().find(|c| {
+            (c.at.0 - at.0).hypot(c.at.1 - at.1) < SAME_POINT
+                || ((c.robot.0 - robot.0).abs() <= 2.0 * hysteresis
+                    && c.span.0 <= span.1 + SAME_POINT
+                    && span.0 <= c.span.1 + SAME_POINT
+                    && c.kind.event == kind.event)
+        }) {
             return c.id;
         }
         let id = self.criticals.len();
@@ -136,6 +146,7 @@ impl Reeb {
             id,
             at,
             robot,
+            span,
             kind,
             confirmed,
         });

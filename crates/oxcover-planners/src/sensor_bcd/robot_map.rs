@@ -43,7 +43,10 @@ impl RobotMap {
         let n = (4.0 / res).ceil() as usize;
         Self {
             res,
-            origin: (centre.0 - n as f64 * res / 2.0, centre.1 - n as f64 * res / 2.0),
+            origin: (
+                centre.0 - n as f64 * res / 2.0,
+                centre.1 - n as f64 * res / 2.0,
+            ),
             w: n,
             h: n,
             cells: vec![UNKNOWN; n * n],
@@ -79,7 +82,11 @@ impl RobotMap {
         let grow = |lo: i64, n: usize| -> (usize, usize) {
             // Cells to add below and above.
             let below = if lo < 0 { (-lo) as usize + n } else { 0 };
-            let above = if lo >= n as i64 { lo as usize - n + 1 + n } else { 0 };
+            let above = if lo >= n as i64 {
+                lo as usize - n + 1 + n
+            } else {
+                0
+            };
             (below, above)
         };
         let (left, right) = grow(i, self.w);
