@@ -178,7 +178,10 @@ fn svg(world: &World, ex: &oxcover_planners::sensor_bcd::Exploration, path: &str
 #[test]
 fn one() {
     let seed: u64 = std::env::var("SEED").unwrap_or("9".into()).parse().unwrap();
-    let w = random_world(seed, &RandomWorldSpec::default());
+    let w = match std::env::var("WORLD") {
+        Ok(f) => World::read(std::path::Path::new(&f)).unwrap(),
+        Err(_) => random_world(seed, &RandomWorldSpec::default()),
+    };
     let g = WorldGeometry::new(&w);
     let cfg = Config {
         noise_sd: std::env::var("NOISE")
@@ -190,5 +193,32 @@ fn one() {
     svg(&w, &ex, "/tmp/one.svg");
     for sh in &w.obstacles {
         println!("{sh:?}");
+    }
+    for t in w.critical_points(0.003) {
+        println!("TRUE {:?} {:?} {}", t.at, t.to, t.kind.label());
+    }
+    for n in &ex.graph.nodes {
+        println!(
+            "NODE {:?} robot {:?} span {:?} {}",
+            n.at,
+            n.robot,
+            n.span,
+            n.kind.label()
+        );
+    }
+}
+
+#[test]
+fn demir() {
+    let dir = "/work/main/fixtures/worlds/demir2018";
+    let mut files: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    files.sort();
+    for f in files {
+        let w = World::read(&f).unwrap();
+        print!("{:22} ", w.name);
+        runw(&w, w.start.unwrap(), true);
     }
 }

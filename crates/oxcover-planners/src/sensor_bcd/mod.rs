@@ -164,12 +164,13 @@ impl Default for Config {
 
 impl Config {
     /// The hysteresis along x of turning-point detection (m): four standard
-    /// deviations of the range noise, at least 3 mm. Features of the
+    /// deviations of the range noise, at least 1 cm (the follower wavers by
+    /// a few millimetres round corners even without noise). Features of the
     /// boundary shallower than this along x are not told from noise; compare
     /// with [`oxcover_robot::World::critical_points`] at this tolerance.
     #[must_use]
     pub fn x_hysteresis(&self) -> f64 {
-        (4.0 * self.noise_sd).max(0.003)
+        (4.0 * self.noise_sd).max(0.01)
     }
 
     /// Checks every setting.
