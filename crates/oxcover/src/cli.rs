@@ -49,6 +49,11 @@ enum Command {
     Info(InfoArgs),
     /// List the planners.
     Planners,
+    /// Cover an unknown polygonal world (RON) with the sensor-based planner
+    /// `sensor-bcd`: range rays, critical points, an incremental Reeb graph.
+    /// Writes the executed path (CSV with a state column), the graph (JSON or
+    /// RON), the rasterised map, pictures and a JSON report.
+    Explore(ExploreArgs),
     /// Plan, then execute the plan with a simulated differential-drive robot
     /// (time law, tracking controller, wheel limits, odometry noise) and score
     /// the EXECUTED trajectory.
@@ -145,6 +150,79 @@ struct PlanArgs {
 }
 
 #[derive(Debug, clap::Args)]
+struct ExploreArgs {
+    /// World file (.ron: boundary, polygons, discs, rectangles; see fixtures/worlds).
+    world: PathBuf,
+    /// Robot body radius in metres.
+    #[arg(
+        long,
+        value_name = "R",
+        default_value_t = 0.2,
+        allow_negative_numbers = true
+    )]
+    robot_radius: f64,
+    /// Tool radius in metres; laps are two tool radii apart.
+    #[arg(
+        long,
+        value_name = "T",
+        default_value_t = 0.25,
+        allow_negative_numbers = true
+    )]
+    tool_radius: f64,
+    /// Distance kept from sensed boundaries beyond the body, in metres.
+    #[arg(
+        long,
+        value_name = "M",
+        default_value_t = 0.04,
+        allow_negative_numbers = true
+    )]
+    margin: f64,
+    /// Range rays in the ring.
+    #[arg(long, value_name = "N", default_value_t = 180)]
+    rays: usize,
+    /// Longest range reading in metres.
+    #[arg(
+        long,
+        value_name = "M",
+        default_value_t = 3.0,
+        allow_negative_numbers = true
+    )]
+    max_range: f64,
+    /// Range noise: standard deviation in metres.
+    #[arg(
+        long,
+        value_name = "SD",
+        default_value_t = 0.0,
+        allow_negative_numbers = true
+    )]
+    noise: f64,
+    /// Seed of the range noise.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    seed: u64,
+    /// Start position in metres [default: the world file's `start`].
+    #[arg(long, value_name = "X,Y", value_parser = parse_start, allow_hyphen_values = true)]
+    start: Option<Point>,
+    /// Executed path to write (CSV: x,y,state).
+    #[arg(long, value_name = "PATH.csv")]
+    out: Option<PathBuf>,
+    /// Discovered Reeb graph to write (.json or .ron).
+    #[arg(long, value_name = "G.json|G.ron")]
+    graph: Option<PathBuf>,
+    /// The world rasterised as a ROS map (yaml, with its PGM beside it).
+    #[arg(long, value_name = "MAP.yaml")]
+    map: Option<PathBuf>,
+    /// SVG picture to write.
+    #[arg(long, value_name = "F.svg")]
+    svg: Option<PathBuf>,
+    /// PNG picture to write.
+    #[arg(long, value_name = "F.png")]
+    png: Option<PathBuf>,
+    /// JSON report to write.
+    #[arg(long, value_name = "F.json")]
+    report: Option<PathBuf>,
+}
+
+#[derive(Debug, clap::Args)]
 struct EvalArgs {
     /// Map file.
     map: PathBuf,
@@ -220,6 +298,7 @@ where
             Ok(())
         }
         Some(Command::Simulate(a)) => cmd_simulate(&a),
+        Some(Command::Explore(a)) => cmd_explore(&a),
     };
     match result {
         Ok(()) => 0,
@@ -331,6 +410,88 @@ fn cmd_plan(a: &PlanArgs) -> Result<()> {
     Ok(())
 }
 
+fn cmd_explore(a: &ExploreArgs) -> Result<()> {
+    use crate::explore::{explore_world, graph_text, trace_csv};
+    use oxcover_planners::sensor_bcd::Config;
+    let world = oxcover_robot::World::read(&a.world)?;
+    let cfg = Config {
+        robot_radius: a.robot_radius,
+        tool_radius: a.tool_radius,
+        margin: a.margin,
+        rays: a.rays,
+        max_range: a.max_range,
+        noise_sd: a.noise,
+        seed: a.seed,
+        ..Config::default()
+    };
+    let outcome = explore_world(&world, &cfg, a.start)?;
+    let e = &outcome.exploration;
+    let report = outcome.report(&world, &cfg);
+    let mut written = Vec::new();
+    let mut write = |f: &Path, text: &[u8]| -> Result<()> {
+        std::fs::write(f, text).map_err(|err| Error::write(f, err))?;
+        written.push(f.to_path_buf());
+        Ok(())
+    };
+    if let Some(f) = &a.out {
+        write(f, trace_csv(e).as_bytes())?;
+    }
+    if let Some(f) = &a.graph {
+        write(f, graph_text(&e.graph, f)?.as_bytes())?;
+    }
+    if let Some(f) = &a.report {
+        let text = serde_json::to_string_pretty(&report)
+            .map_err(|err| Error::Internal(format!("report serialisation failed: {err}")))?;
+        write(f, text.as_bytes())?;
+    }
+    if let Some(f) = &a.map {
+        oxcover_grid::io::write_ros_map(&outcome.map, f)?;
+        written.push(f.clone());
+    }
+    let mut rows = metric_rows(&outcome.evaluation.metrics);
+    rows.truncate(3);
+    rows.push((
+        "critical points".into(),
+        format!("{}/{} found", report.found, report.true_critical_points),
+    ));
+    rows.push((
+        "graph".into(),
+        format!("{} nodes, {} edges", report.nodes, report.edges),
+    ));
+    rows.push(("disc collisions".into(), report.disc_collisions.to_string()));
+    let overlay = outcome.overlay();
+    let scene = Scene {
+        map: &outcome.map,
+        path: &[],
+        planned: None,
+        covered: Some(&outcome.evaluation.covered),
+        coverable: Some(&outcome.evaluation.problem.coverable),
+        title: format!("{} - sensor-bcd", world.name),
+        overlay: Some(&overlay),
+        rows: rows.clone(),
+    };
+    for f in [a.svg.as_deref(), a.png.as_deref()].into_iter().flatten() {
+        render_to_file(&scene, f)?;
+        written.push(f.to_path_buf());
+    }
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(
+        out,
+        "sensor-bcd on {} ({} m x {} m): {} cycles, {} laps in {:.0} ms",
+        a.world.display(),
+        world.width,
+        world.height,
+        report.cycles,
+        report.laps,
+        report.explore_ms
+    );
+    let _ = write!(out, "{}", table(&rows));
+    for w in written {
+        let _ = writeln!(out, "wrote {}", w.display());
+    }
+    Ok(())
+}
+
 /// The bundled robot description (`fixtures/robots/floor_cleaner.ron`).
 const FLOOR_CLEANER: &str = include_str!("../../../fixtures/robots/floor_cleaner.ron");
 
@@ -398,6 +559,7 @@ fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
             short_name(&p.map.display().to_string()),
             p.planner
         ),
+        overlay: None,
         rows: rows.clone(),
     };
     for f in [p.svg.as_deref(), p.png.as_deref()].into_iter().flatten() {
@@ -522,6 +684,7 @@ pub(crate) fn write_plan_outputs(
         covered: Some(&ev.covered),
         coverable: Some(&ev.problem.coverable),
         title,
+        overlay: None,
         rows: metric_rows(&ev.metrics),
     };
     for p in [out.svg, out.png].into_iter().flatten() {
@@ -593,6 +756,7 @@ fn cmd_render(a: &RenderArgs) -> Result<()> {
                 covered: Some(&ev.covered),
                 coverable: Some(&ev.problem.coverable),
                 title: format!("{name} - {}", short_name(&path_file.display().to_string())),
+                overlay: None,
                 rows: metric_rows(&ev.metrics),
             };
             render_to_file(&scene, &a.out)?;
@@ -605,6 +769,7 @@ fn cmd_render(a: &RenderArgs) -> Result<()> {
                 covered: None,
                 coverable: None,
                 title: name,
+                overlay: None,
                 rows: map_rows(&map),
             };
             render_to_file(&scene, &a.out)?;

@@ -12,6 +12,9 @@ pub enum Error {
     /// A map could not be read or a coverage problem could not be built.
     #[error(transparent)]
     Map(#[from] oxcover_grid::Error),
+    /// A world file or robot description could not be used.
+    #[error(transparent)]
+    Robot(#[from] oxcover_robot::Error),
     /// A planner refused the problem or failed.
     #[error(transparent)]
     Planner(#[from] oxcover_planners::Error),

@@ -37,6 +37,7 @@ pub mod cli;
 pub mod closed_loop;
 pub mod demo;
 pub mod error;
+pub mod explore;
 pub mod metrics;
 pub mod path;
 pub mod planner;

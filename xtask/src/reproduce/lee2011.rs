@@ -343,6 +343,7 @@ fn figure(
             covered: Some(&run.evaluation.covered),
             coverable: Some(&run.evaluation.problem.coverable),
             title: format!("{env} - {planner} executed (plan in orange)"),
+            overlay: None,
             rows,
         },
         &out.join(format!("lee2011_{env}_{planner}.png")),

@@ -117,6 +117,7 @@ fn plan_png(
             covered: Some(&o.evaluation.covered),
             coverable: Some(&o.evaluation.problem.coverable),
             title: title.to_string(),
+            overlay: None,
             rows: metric_rows(&o.evaluation.metrics),
         },
         file,

@@ -120,6 +120,7 @@ pub fn run() -> anyhow::Result<()> {
                 covered: Some(&r.evaluation.covered),
                 coverable: Some(&r.evaluation.problem.coverable),
                 title: format!("Grid_Cover path (orange), {} (blue)", RUNS[i].0),
+                overlay: None,
                 rows: vec![
                     (
                         "RMS error cm".into(),

@@ -240,6 +240,7 @@ pub fn run() -> anyhow::Result<()> {
             covered: Some(&o.evaluation.covered),
             coverable: Some(&o.evaluation.problem.coverable),
             title: "simple_rooms - rect-priority (no boundary pass)".into(),
+            overlay: None,
             rows: metric_rows(&o.evaluation.metrics),
         };
         std::fs::write(out.join("zhang2008_simple_rooms.svg"), render_svg(&scene)?)?;

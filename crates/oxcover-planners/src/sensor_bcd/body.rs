@@ -131,7 +131,7 @@ impl<'w> Body<'w> {
     fn scan(&mut self) {
         let mut hits = Vec::with_capacity(self.ring_angles.len());
         let mut nearest: Option<((f64, f64), usize, f64)> = None;
-        let mark_free = self.scans.is_multiple_of(MAP_SCAN_STRIDE);
+        let mark_free = self.scans % MAP_SCAN_STRIDE == 0;
         for (k, &a) in self.ring_angles.iter().enumerate() {
             let angle = self.heading + a;
             let reading = self.ring.read(self.world, self.p, angle);

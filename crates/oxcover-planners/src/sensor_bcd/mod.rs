@@ -144,13 +144,13 @@ pub struct Config {
 }
 
 impl Default for Config {
-    /// A 0.2 m robot with a 0.25 m tool (laps 0.5 m apart), 2 cm margin,
+    /// A 0.2 m robot with a 0.25 m tool (laps 0.5 m apart), 4 cm margin,
     /// 180 rays of 3 m, no noise, 2 cm following steps, a 2.5 cm map.
     fn default() -> Self {
         Self {
             robot_radius: 0.2,
             tool_radius: 0.25,
-            margin: 0.02,
+            margin: 0.04,
             rays: 180,
             max_range: 3.0,
             noise_sd: 0.0,

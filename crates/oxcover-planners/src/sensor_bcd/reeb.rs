@@ -120,9 +120,9 @@ impl Reeb {
     }
 
     /// Adds a detection, or returns the known critical point it repeats:
-    /// one whose contact lies within [`SAME_POINT`], or whose stretch lies
-    /// on the same wall along y (robot x within twice the hysteresis, y
-    /// ranges overlapping).
+    /// one whose contact lies within [`SAME_POINT`], or one of the same class
+    /// whose stretch lies on the same wall along y (robot x within twice the
+    /// hysteresis, y ranges overlapping).
     pub(crate) fn critical(
         &mut self,
         at: (f64, f64),
@@ -137,7 +137,7 @@ impl Reeb {
                 || ((c.robot.0 - robot.0).abs() <= 2.0 * hysteresis
                     && c.span.0 <= span.1 + SAME_POINT
                     && span.0 <= c.span.1 + SAME_POINT
-                    && c.kind.event == kind.event)
+                    && c.kind == kind)
         }) {
             return c.id;
         }
@@ -226,5 +226,114 @@ impl Reeb {
             })
             .min_by(|a, b| a.0.total_cmp(&b.0))
             .map(|(_, c)| c)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use oxcover_robot::{Convexity, Event};
+
+    const IN_CONVEX: CriticalKind = CriticalKind {
+        event: Event::In,
+        convexity: Convexity::Convex,
+    };
+    const OUT_CONVEX: CriticalKind = CriticalKind {
+        event: Event::Out,
+        convexity: Convexity::Convex,
+    };
+
+    #[test]
+    fn intervals_match_on_their_slice_only() {
+        let mut r = Reeb::default();
+        let a = r.interval(0, (0.0, 0.2), (0.0, 3.0));
+        assert_eq!(r.interval(0, (0.0, 2.9), (0.0, 0.25)), a);
+        assert_ne!(r.interval(1, (0.5, 0.2), (0.5, 3.0)), a);
+        // Another interval of the same slice, past an obstacle.
+        assert_ne!(r.interval(0, (0.0, 3.5), (0.0, 5.0)), a);
+        assert_eq!(r.intervals.len(), 3);
+    }
+
+    #[test]
+    fn repeats_merge_and_walls_along_y_are_one_point() {
+        let mut r = Reeb::default();
+        let a = r.critical((1.0, 1.0), (0.76, 1.0), (1.0, 1.0), IN_CONVEX, true, 0.01);
+        assert_eq!(
+            r.critical(
+                (1.02, 1.01),
+                (0.78, 1.01),
+                (1.01, 1.01),
+                IN_CONVEX,
+                true,
+                0.01
+            ),
+            a
+        );
+        // One wall along y found at two heights: the same critical stretch.
+        let w = r.critical((5.0, 1.0), (4.76, 1.0), (0.5, 2.0), OUT_CONVEX, true, 0.01);
+        assert_eq!(
+            r.critical((5.0, 1.8), (4.765, 1.8), (1.5, 2.5), OUT_CONVEX, true, 0.01),
+            w
+        );
+        // Facing walls of a narrow gap at nearly the same x stay apart.
+        assert_ne!(
+            r.critical(
+                (5.5, 1.5),
+                (4.77, 1.5),
+                (1.0, 2.0),
+                CriticalKind {
+                    convexity: Convexity::Concave,
+                    ..OUT_CONVEX
+                },
+                true,
+                0.01
+            ),
+            w
+        );
+        assert_eq!(r.criticals.len(), 3);
+    }
+
+    #[test]
+    fn a_split_and_a_merge_make_four_cells() {
+        // Slices 0 to 3 and an obstacle from x = 1.5 to 2.5, laid out by
+        // hand: slab 0–1 plain, slab 1–2 holds the split (one interval on
+        // slice 1, two on slice 2), slab 2–3 the merge.
+        let mut r = Reeb::default();
+        let i0 = r.interval(0, (0.0, 0.0), (0.0, 4.0));
+        let i1 = r.interval(1, (1.0, 0.0), (1.0, 4.0));
+        let lo2 = r.interval(2, (2.0, 0.0), (2.0, 1.5));
+        let hi2 = r.interval(2, (2.0, 2.5), (2.0, 4.0));
+        let i3 = r.interval(3, (3.0, 0.0), (3.0, 4.0));
+        let split = r.critical((1.5, 2.0), (1.26, 2.0), (2.0, 2.0), IN_CONVEX, true, 0.01);
+        let merge = r.critical((2.5, 2.0), (2.74, 2.0), (2.0, 2.0), OUT_CONVEX, true, 0.01);
+        let slab = |left, intervals: Vec<usize>, criticals: Vec<usize>| SlabRecord {
+            left,
+            intervals,
+            criticals,
+        };
+        r.slabs = vec![
+            slab(0, vec![i0, i1], vec![]),
+            slab(1, vec![i1, lo2, hi2], vec![split]),
+            slab(2, vec![lo2, hi2, i3], vec![merge]),
+        ];
+        for iv in &mut r.intervals {
+            iv.done = [true; 2];
+        }
+        let g = r.graph();
+        assert_eq!(g.edges.len(), 4);
+        let ends: Vec<_> = g
+            .edges
+            .iter()
+            .map(|e| (e.from, e.to, e.laps.len()))
+            .collect();
+        assert!(ends.contains(&(None, Some(split), 2)));
+        assert_eq!(
+            ends.iter()
+                .filter(|e| **e == (Some(split), Some(merge), 1))
+                .count(),
+            2
+        );
+        assert!(ends.contains(&(Some(merge), None, 1)));
+        assert!(g.edges.iter().all(|e| e.covered));
     }
 }

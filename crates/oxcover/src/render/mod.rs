@@ -51,6 +51,45 @@ pub struct Scene<'a> {
     pub title: String,
     /// `(key, value)` rows under the title.
     pub rows: Vec<(String, String)>,
+    /// Coloured pieces of path, lines and markers drawn over the path,
+    /// with their own legend entries (e.g. the sensor-based planner's
+    /// states, critical points and graph).
+    pub overlay: Option<&'a Overlay>,
+}
+
+/// A marker's shape.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MarkerShape {
+    /// A filled disc.
+    Disc,
+    /// A circle outline.
+    Ring,
+    /// A filled square.
+    Square,
+}
+
+/// What an overlay legend entry shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LegendMark {
+    /// A stroke of path.
+    Stroke,
+    /// A thin line.
+    Line,
+    /// A marker.
+    Marker(MarkerShape),
+}
+
+/// Drawings over the map and path.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Overlay {
+    /// Polylines in a colour each, drawn like the path.
+    pub strokes: Vec<(Vec<Point>, [u8; 3])>,
+    /// Thin straight lines.
+    pub lines: Vec<(Point, Point, [u8; 3])>,
+    /// Markers: position, colour, shape, radius in pixels.
+    pub markers: Vec<(Point, [u8; 3], MarkerShape, f64)>,
+    /// Extra legend entries.
+    pub legend: Vec<(String, [u8; 3], LegendMark)>,
 }
 
 /// What a map pixel shows, by priority (highest first when cells share a pixel).
@@ -151,7 +190,8 @@ impl Layout {
         };
         let map_w = ((map.width() as f64 * scale).round() as u32).max(1);
         let map_h = ((map.height() as f64 * scale).round() as u32).max(1);
-        let legend_h = 60 + 26 * (legend_rows as u32 + 9);
+        let extra = scene.overlay.map_or(0, |o| o.legend.len()) as u32;
+        let legend_h = 60 + 26 * (legend_rows as u32 + 9 + extra);
         Self {
             scale,
             map_w,
@@ -280,6 +320,7 @@ mod tests {
             covered: None,
             coverable: None,
             title: "a title".into(),
+            overlay: None,
             rows: vec![],
         };
         let (small, _) = parse_ascii("....\n....").unwrap();
@@ -306,6 +347,7 @@ mod tests {
             covered: None,
             coverable: None,
             title: String::new(),
+            overlay: None,
             rows: vec![],
         };
         let l = Layout::of(&scene);

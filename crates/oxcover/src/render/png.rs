@@ -6,8 +6,8 @@ use tiny_skia::{
 };
 
 use super::{
-    END_RGB, Layout, MARGIN_PX, PATH_RGB, PLANNED_RGB, START_RGB, Scene, Swatch, arrow_marks,
-    legend_key, map_raster,
+    END_RGB, Layout, LegendMark, MARGIN_PX, MarkerShape, Overlay, PATH_RGB, PLANNED_RGB, START_RGB,
+    Scene, Swatch, arrow_marks, legend_key, map_raster,
 };
 use crate::error::{Error, Result};
 
@@ -95,6 +95,9 @@ pub fn render_png(scene: &Scene<'_>) -> Result<Vec<u8>> {
             );
         }
     }
+    if let Some(o) = scene.overlay {
+        overlay(&mut pm, scene, &layout, o, stroke_w);
+    }
     if let (Some(&(sx, sy)), Some(&(ex, ey))) = (px.first(), px.last()) {
         square(&mut pm, ex as f32, ey as f32, 6.0, END_RGB);
         disc(&mut pm, sx as f32, sy as f32, 7.0, START_RGB);
@@ -126,6 +129,16 @@ pub fn render_png(scene: &Scene<'_>) -> Result<Vec<u8>> {
         text(&mut pm, lx + 26, y, label, [0, 0, 0]);
         y += 26;
     }
+    for (label, rgb, mark) in scene.overlay.map(|o| o.legend.as_slice()).unwrap_or(&[]) {
+        let (cx, cy) = (lx as f32 + 8.0, y as f32 + 8.0);
+        match mark {
+            LegendMark::Stroke => rect(&mut pm, lx as f32, cy - 1.5, 16.0, 3.0, *rgb),
+            LegendMark::Line => rect(&mut pm, lx as f32, cy - 0.5, 16.0, 1.0, *rgb),
+            LegendMark::Marker(shape) => marker(&mut pm, cx, cy, *rgb, *shape, 6.0),
+        }
+        text(&mut pm, lx + 26, y, label, [0, 0, 0]);
+        y += 26;
+    }
     y += 10;
     let right = layout.map_w + 2 * MARGIN_PX + layout.legend_w - 12;
     for (k, v) in &scene.rows {
@@ -136,6 +149,63 @@ pub fn render_png(scene: &Scene<'_>) -> Result<Vec<u8>> {
     }
     pm.encode_png()
         .map_err(|e| Error::Internal(format!("PNG encoding failed: {e}")))
+}
+
+/// The overlay's strokes, lines and markers.
+fn overlay(pm: &mut Pixmap, scene: &Scene<'_>, layout: &Layout, o: &Overlay, stroke_w: f32) {
+    let polyline = |pts: &[(f64, f64)]| {
+        let mut pb = PathBuilder::new();
+        for (k, &(x, y)) in pts.iter().enumerate() {
+            if k == 0 {
+                pb.move_to(x as f32, y as f32);
+            } else {
+                pb.line_to(x as f32, y as f32);
+            }
+        }
+        pb.finish()
+    };
+    for (pts, rgb) in &o.strokes {
+        let px: Vec<(f64, f64)> = pts.iter().map(|p| layout.pixel_of(scene.map, p)).collect();
+        if let Some(path) = polyline(&px) {
+            let stroke = Stroke {
+                width: stroke_w,
+                line_cap: LineCap::Round,
+                line_join: LineJoin::Round,
+                ..Stroke::default()
+            };
+            pm.stroke_path(&path, &paint(*rgb), &stroke, Transform::identity(), None);
+        }
+    }
+    for (a, b, rgb) in &o.lines {
+        let px = [layout.pixel_of(scene.map, a), layout.pixel_of(scene.map, b)];
+        if let Some(path) = polyline(&px) {
+            let stroke = Stroke {
+                width: 1.5,
+                ..Stroke::default()
+            };
+            pm.stroke_path(&path, &paint(*rgb), &stroke, Transform::identity(), None);
+        }
+    }
+    for (p, rgb, shape, r) in &o.markers {
+        let (x, y) = layout.pixel_of(scene.map, p);
+        marker(pm, x as f32, y as f32, *rgb, *shape, *r as f32);
+    }
+}
+
+fn marker(pm: &mut Pixmap, cx: f32, cy: f32, rgb: [u8; 3], shape: MarkerShape, r: f32) {
+    match shape {
+        MarkerShape::Disc => disc(pm, cx, cy, r, rgb),
+        MarkerShape::Square => square(pm, cx, cy, r, rgb),
+        MarkerShape::Ring => {
+            if let Some(path) = PathBuilder::from_circle(cx, cy, r) {
+                let stroke = Stroke {
+                    width: 2.0,
+                    ..Stroke::default()
+                };
+                pm.stroke_path(&path, &paint(rgb), &stroke, Transform::identity(), None);
+            }
+        }
+    }
 }
 
 /// Encodes an RGB buffer as PNG (used for the SVG's embedded map).

@@ -4,8 +4,8 @@
 use std::fmt::Write as _;
 
 use super::{
-    END_RGB, Layout, MARGIN_PX, PATH_RGB, PLANNED_RGB, START_RGB, Scene, Swatch, arrow_marks,
-    legend_key, map_raster,
+    END_RGB, Layout, LegendMark, MARGIN_PX, MarkerShape, Overlay, PATH_RGB, PLANNED_RGB, START_RGB,
+    Scene, Swatch, arrow_marks, legend_key, map_raster,
 };
 use crate::error::Result;
 
@@ -79,6 +79,9 @@ pub fn render_svg(scene: &Scene<'_>) -> Result<String> {
             );
         }
         s.push_str("\"/>\n");
+    }
+    if let Some(o) = scene.overlay {
+        overlay(&mut s, scene, &layout, o, stroke);
     }
     if let (Some(&(sx, sy)), Some(&(ex, ey))) = (px.first(), px.last()) {
         let _ = writeln!(
@@ -154,6 +157,37 @@ pub fn render_svg(scene: &Scene<'_>) -> Result<String> {
         );
         y += 26;
     }
+    for (label, rgb, mark) in scene.overlay.map(|o| o.legend.as_slice()).unwrap_or(&[]) {
+        let (x0, y0) = (lx + 8, y - 12);
+        let c = hex(*rgb);
+        match mark {
+            LegendMark::Stroke | LegendMark::Line => {
+                let w = if *mark == LegendMark::Stroke { 3 } else { 1 };
+                let _ = writeln!(
+                    s,
+                    r#"<line x1="{x0}" y1="{}" x2="{}" y2="{}" stroke="{c}" stroke-width="{w}"/>"#,
+                    y0 + 7,
+                    x0 + 16,
+                    y0 + 7
+                );
+            }
+            LegendMark::Marker(shape) => marker(
+                &mut s,
+                f64::from(x0 + 8),
+                f64::from(y0 + 7),
+                *rgb,
+                *shape,
+                6.0,
+            ),
+        }
+        let _ = writeln!(
+            s,
+            r#"<text x="{}" y="{y}">{}</text>"#,
+            x0 + 26,
+            escape(label)
+        );
+        y += 26;
+    }
     y += 10;
     for (k, v) in &scene.rows {
         let _ = writeln!(
@@ -168,6 +202,59 @@ pub fn render_svg(scene: &Scene<'_>) -> Result<String> {
     }
     s.push_str("</g>\n</svg>\n");
     Ok(s)
+}
+
+/// The overlay's strokes, lines and markers.
+fn overlay(s: &mut String, scene: &Scene<'_>, layout: &Layout, o: &Overlay, stroke: f64) {
+    for (pts, rgb) in &o.strokes {
+        if pts.len() < 2 {
+            continue;
+        }
+        let _ = write!(
+            s,
+            r#"<polyline fill="none" stroke-linejoin="round" stroke-linecap="round" stroke="{}" stroke-width="{stroke:.2}" points=""#,
+            hex(*rgb)
+        );
+        for p in pts {
+            let (x, y) = layout.pixel_of(scene.map, p);
+            let _ = write!(s, "{x:.2},{y:.2} ");
+        }
+        s.push_str("\"/>\n");
+    }
+    for (a, b, rgb) in &o.lines {
+        let ((x1, y1), (x2, y2)) = (layout.pixel_of(scene.map, a), layout.pixel_of(scene.map, b));
+        let _ = writeln!(
+            s,
+            r#"<line x1="{x1:.2}" y1="{y1:.2}" x2="{x2:.2}" y2="{y2:.2}" stroke="{}" stroke-width="1.5"/>"#,
+            hex(*rgb)
+        );
+    }
+    for (p, rgb, shape, r) in &o.markers {
+        let (x, y) = layout.pixel_of(scene.map, p);
+        marker(s, x, y, *rgb, *shape, *r);
+    }
+}
+
+fn marker(s: &mut String, x: f64, y: f64, rgb: [u8; 3], shape: MarkerShape, r: f64) {
+    let c = hex(rgb);
+    let _ = match shape {
+        MarkerShape::Disc => writeln!(
+            s,
+            r#"<circle cx="{x:.2}" cy="{y:.2}" r="{r:.1}" fill="{c}" stroke="white"/>"#
+        ),
+        MarkerShape::Ring => writeln!(
+            s,
+            r#"<circle cx="{x:.2}" cy="{y:.2}" r="{r:.1}" fill="none" stroke="{c}" stroke-width="2"/>"#
+        ),
+        MarkerShape::Square => writeln!(
+            s,
+            r#"<rect x="{:.2}" y="{:.2}" width="{:.1}" height="{:.1}" fill="{c}" stroke="white"/>"#,
+            x - r,
+            y - r,
+            2.0 * r,
+            2.0 * r
+        ),
+    };
 }
 
 fn hex([r, g, b]: [u8; 3]) -> String {
