@@ -39,7 +39,7 @@ enum Task {
         #[arg(long)]
         planners: Option<String>,
     },
-    /// Reproduce a paper's experiment: siamantas2010, siamantas2010-tracking, zhang2008, pavlicek2002, floorplans or lee2011.
+    /// Reproduce a paper's experiment: siamantas2010, siamantas2010-tracking, zhang2008, pavlicek2002, floorplans, lee2011 or demir2018.
     Reproduce {
         /// Experiment name.
         name: String,

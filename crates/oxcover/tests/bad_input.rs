@@ -109,6 +109,38 @@ fn bad_inputs_exit_2_with_one_line() {
     let wall_csv = write(&d, "wall.csv", b"x,y\n-5,-5\n");
     let ok_csv = write(&d, "ok.csv", b"x,y\n0.075,0.075\n");
     let far_csv = write(&d, "far.csv", b"x,y\n0.075,0.075\n1e12,0.075\n");
+    let world =
+        |body: &str| format!("(name: \"w\", width: 4.0, height: 3.0, resolution: 0.025, {body})");
+    let ok_world = write(
+        &d,
+        "ok_world.ron",
+        world("obstacles: [Rect(centre: (2.0, 1.5), size: (1.0, 1.0), angle_deg: 0.0)]").as_bytes(),
+    );
+    let truncated_world = write(
+        &d,
+        "cut.ron",
+        &world("obstacles: [Polygon([(1.0, 1.0),").into_bytes(),
+    );
+    let bowtie_world = write(
+        &d,
+        "bowtie.ron",
+        world("obstacles: [Polygon([(1.0, 1.0), (2.0, 2.0), (2.0, 1.0), (1.0, 1.8)])]").as_bytes(),
+    );
+    let nan_world = write(
+        &d,
+        "nan.ron",
+        world("obstacles: [Circle(centre: (NaN, 1.0), radius: 0.5)]").as_bytes(),
+    );
+    let no_res_world = write(
+        &d,
+        "nores.ron",
+        b"(name: \"w\", width: 4.0, height: 3.0, obstacles: [])",
+    );
+    let huge_world = write(
+        &d,
+        "huge.ron",
+        b"(name: \"w\", width: 1e6, height: 1e6, resolution: 0.01, obstacles: [])",
+    );
     let no_dir = d.join("no/such/dir/out.csv").display().to_string();
     let missing = d.join("does-not-exist.yaml").display().to_string();
     let _ = &ok_pgm;
@@ -331,6 +363,41 @@ fn bad_inputs_exit_2_with_one_line() {
         ),
         (vec!["info", &walls, "--resolution", "abc"], "abc"),
         (vec!["frobnicate"], "frobnicate"),
+        (vec!["explore", &missing], "does-not-exist.yaml"),
+        (vec!["explore", &truncated_world], "cut.ron"),
+        (vec!["explore", &bowtie_world], "simple"),
+        (vec!["explore", &nan_world], "obstacle 1"),
+        (vec!["explore", &no_res_world], "resolution"),
+        (vec!["explore", &huge_world], "cells"),
+        (vec!["explore", &ok_world], "--start"),
+        (vec!["explore", &ok_world, "--start", "2,1.5"], "obstacle"),
+        (
+            vec!["explore", &ok_world, "--start", "0.1,0.1"],
+            "robot radius",
+        ),
+        (
+            vec!["explore", &ok_world, "--start", "0.5,0.5", "--noise", "NaN"],
+            "range noise",
+        ),
+        (
+            vec![
+                "explore",
+                &ok_world,
+                "--start",
+                "0.5,0.5",
+                "--robot-radius",
+                "-1",
+            ],
+            "robot radius",
+        ),
+        (
+            vec!["explore", &ok_world, "--start", "0.5,0.5", "--rays", "2"],
+            "rays",
+        ),
+        (
+            vec!["explore", &ok_world, "--start", "0.5,0.5", "--out", &no_dir],
+            "cannot write",
+        ),
         (
             vec!["plan", &big_map, "--planner", "optimal"],
             "at most 16 cells on its shorter side",

@@ -269,3 +269,62 @@ fn simulate_executes_a_plan_and_scores_the_executed_path() {
     assert_eq!(json(&eval)["coverage"], r["coverage"]);
     assert!(std::fs::metadata(&png).expect("png written").len() > 0);
 }
+
+#[test]
+fn explore_writes_path_graph_map_pictures_and_report() {
+    let d = scratch("explore");
+    let world = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fixtures/worlds/demir2018/fig15_stacked.ron")
+        .display()
+        .to_string();
+    let f = |n: &str| d.join(n).display().to_string();
+    let (out, _) = run(&[
+        "explore",
+        &world,
+        "--out",
+        &f("p.csv"),
+        "--graph",
+        &f("g.json"),
+        "--map",
+        &f("m.yaml"),
+        "--svg",
+        &f("f.svg"),
+        "--png",
+        &f("f.png"),
+        "--report",
+        &f("r.json"),
+    ]);
+    assert!(out.contains("6/6 found"), "{out}");
+    let csv = std::fs::read_to_string(d.join("p.csv")).expect("path file");
+    assert!(csv.starts_with("x,y,state\n0.5,9,0\n"), "{}", &csv[..40]);
+    let report = json(&std::fs::read_to_string(d.join("r.json")).expect("report"));
+    for key in METRIC_KEYS {
+        assert!(report.get(key).is_some(), "{key}");
+    }
+    assert!(report["coverage"].as_f64().expect("coverage") >= 0.99);
+    assert_eq!(report["collisions"], 0);
+    assert_eq!(report["disc_collisions"], 0);
+    assert_eq!(report["found"], report["true_critical_points"]);
+    let graph = json(&std::fs::read_to_string(d.join("g.json")).expect("graph"));
+    assert_eq!(graph["nodes"].as_array().expect("nodes").len(), 6);
+    // The path file and the map it wrote are scored the same by `eval`
+    // (extra CSV columns are allowed by the contract).
+    let (eval, _) = run(&[
+        "eval",
+        &f("m.yaml"),
+        &f("p.csv"),
+        "--robot-radius",
+        "0.2",
+        "--tool-radius",
+        "0.25",
+    ]);
+    let eval = json(&eval);
+    assert_eq!(eval["coverage"], report["coverage"]);
+    assert_eq!(eval["collisions"], 0);
+    assert!(
+        std::fs::read_to_string(d.join("f.svg"))
+            .expect("svg")
+            .contains("Reeb graph edge")
+    );
+    assert!(std::fs::metadata(d.join("f.png")).expect("png").len() > 1000);
+}

@@ -3,6 +3,7 @@
 //! an SVG figure, the exact command, and a discussion of differences).
 
 mod decomposition_figure;
+pub mod demir2018;
 pub mod lee2011;
 pub mod pavlicek2002;
 pub mod siamantas2010;
@@ -21,9 +22,10 @@ pub fn run(name: &str) -> anyhow::Result<()> {
         "pavlicek2002" => pavlicek2002::run(),
         "floorplans" => pavlicek2002::run_floorplans(),
         "lee2011" => lee2011::run(),
+        "demir2018" => demir2018::run(),
         other => {
             anyhow::bail!(
-                "no experiment named `{other}`: expected siamantas2010, siamantas2010-tracking, zhang2008, pavlicek2002, floorplans or lee2011"
+                "no experiment named `{other}`: expected siamantas2010, siamantas2010-tracking, zhang2008, pavlicek2002, floorplans, lee2011 or demir2018"
             )
         }
     }
