@@ -18,6 +18,12 @@
 //! | `border-expansion` | [`border_expansion`] | Pavlicek et al. 2002 (seed 004) | yes |
 //! | `smooth` | [`smooth`] | Lee et al. 2011 (seed 002): spiral, wall following, CFCIDT, PSO-tuned Bézier virtual-wall paths | yes |
 //!
+//! Beside the registry, [`sensor_bcd`] is the online planner of seed 003:
+//! it covers an unknown polygonal world ([`oxcover_robot::World`]) with range
+//! rays, growing a boustrophedon decomposition and its Reeb graph as it goes
+//! (`oxcover explore`). It needs a world to sense, not a grid, so it is not a
+//! [`Planner`].
+//!
 //! Planners work on the coverage grid ([`oxcover_grid::CoarseGrid`]; one tool
 //! diameter per cell, the fine grid itself with the default radii) and return
 //! coverage or fine cell paths; [`expand`] makes every plan a 4-connected path

@@ -27,7 +27,7 @@
 //! - [`world`]: polygonal worlds (outer boundary, polygons convex or not,
 //!   discs, rectangles) read from RON, rasterised to occupancy grids,
 //!   ray-cast with parry2d, with exact clearances and exact critical points.
-//! - [`random_world`]: seeded random worlds of convex and concave polygons
+//! - [`random_world`](mod@random_world): seeded random worlds of convex and concave polygons
 //!   with guaranteed passages, for property tests.
 //! - [`critical_point`]: seed 003's three-ray critical-point detector (the
 //!   dot-product test of its eqs. 1–3, with tolerances), classifying IN/OUT

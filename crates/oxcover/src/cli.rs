@@ -833,4 +833,9 @@ fn cmd_planners() {
             p.summary
         );
     }
+    let _ = writeln!(
+        out,
+        "\n{:<w$}  {:<8}  online sensor-based boustrophedon coverage of unknown polygonal worlds (seed 003): `oxcover explore WORLD.ron`",
+        "sensor-bcd", "yes"
+    );
 }

@@ -11,10 +11,14 @@
 //! - [`closed_loop`]: a plan executed by a simulated differential-drive robot
 //!   (time law, tracking controller, wheel limits, odometry noise, energy),
 //!   scored on the executed trajectory.
+//! - [`explore`]: the sensor-based planner `sensor-bcd` run on a polygonal
+//!   world, scored on the world's raster, its Reeb graph matched against the
+//!   world's exact critical points, and drawn (`oxcover explore`).
 //! - [`metrics`]: coverage, collisions, length, turns, rotation, redundancy,
 //!   steps, estimated time, exactly as the contract defines them.
 //! - [`path`]: cell paths to metre waypoints; the CSV path file.
-//! - [`render`]: SVG and PNG pictures with a metrics legend.
+//! - [`render`]: SVG and PNG pictures with a metrics legend, and overlays
+//!   (coloured strokes, lines, markers) for states and graphs.
 //! - [`report`]: the JSON report of `plan --report`.
 //! - [`cli`], [`demo`]: the command line and its no-argument demo.
 //!

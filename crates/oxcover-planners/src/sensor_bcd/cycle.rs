@@ -173,22 +173,10 @@ impl<'w> Explorer<'w> {
             criticals: Vec::new(),
         };
         let mut from_a = true;
-        if std::env::var("BCD_DEBUG").is_ok() {
-            eprintln!(
-                "CYCLE from interval {k} slice {a} s {s} top {top} at ({:.3},{:.3}) x_a {:.3} x_b {:.3}",
-                self.body.p.0,
-                self.body.p.1,
-                self.slice_x(a),
-                self.slice_x(b)
-            );
-        }
         let mut exits: Vec<(Exit, f64)> = Vec::new();
         for _ in 0..MAX_RUNS {
             let exit = self.follow_run(turn, s, xi_a, xi_b, from_a, &mut record)?;
             let p = self.body.p;
-            if std::env::var("BCD_DEBUG").is_ok() {
-                eprintln!("  exit {exit:?} at ({:.3},{:.3})", p.0, p.1);
-            }
             // Back on the start interval's stretch of slice a: closed. (Its
             // ends, not only the one opposite the start: where the boundary
             // is steep, noise moves the crossing along the slice.)
@@ -393,12 +381,6 @@ impl<'w> Explorer<'w> {
         self.counters.turning_points += 1;
         if confirmed {
             self.counters.confirmed += 1;
-        }
-        if std::env::var("BCD_DEBUG").is_ok() {
-            eprintln!(
-                "TP robot ({:.3},{:.3}) contact ({:.3},{:.3}) max {is_max} s {s} towards {} {:?} slab {}",
-                e.robot.0, e.robot.1, e.contact.0, e.contact.1, e.towards, e.detection, record.left
-            );
         }
         let id = self
             .reeb
