@@ -164,6 +164,26 @@ fn smooth_section(root: &Path) -> anyhow::Result<()> {
     Ok(())
 }
 
+fn sensor_bcd_section(root: &Path) -> anyhow::Result<()> {
+    let group = root.join("target/criterion/sensor_bcd");
+    let mut md = format!(
+        "Measured by `cargo xtask bench --only sensor_bcd` (which runs `cargo bench -p oxcover-planners --bench sensor_bcd`) on {}. `sensor-bcd` is the whole online run (scans of 180 rays, following, cycles, routes over its own map) on the world; `boustrophedon` is the offline planner given the world's 2.5 cm raster, planner call only, the reference of the same run.\n\n| world | boustrophedon ms | sensor-bcd ms | sensor-bcd / boustrophedon |\n|---|---:|---:|---:|\n",
+        machine()
+    );
+    for world in ["fig05_polygon", "fig14_concave", "floor_plan"] {
+        let t = |p: &str| estimate_ns(&group.join(format!("{p}_{world}"))).map(|(m, _)| m);
+        let (reference, online) = (t("boustrophedon")?, t("sensor-bcd")?);
+        md += &format!(
+            "| {world} | {:.1} | {:.0} | {:.0}× |\n",
+            reference / 1e6,
+            online / 1e6,
+            online / reference
+        );
+    }
+    crate::replace_section(&root.join("docs/benchmarks.md"), "sensor_bcd", &md)?;
+    Ok(())
+}
+
 fn machine() -> String {
     let out = |cmd: &str, args: &[&str]| {
         Command::new(cmd)
@@ -200,6 +220,7 @@ pub fn run(no_run: bool, only: Option<&str>) -> anyhow::Result<()> {
     for (name, krate) in [
         ("floorplan", "oxcover-planners"),
         ("smooth", "oxcover-planners"),
+        ("sensor_bcd", "oxcover-planners"),
         ("grid_cover", "oxcover-planners"),
         ("wavefront", "oxcover-distance"),
     ] {
@@ -217,6 +238,9 @@ pub fn run(no_run: bool, only: Option<&str>) -> anyhow::Result<()> {
     }
     if want("smooth") {
         smooth_section(&root)?;
+    }
+    if want("sensor_bcd") {
+        sensor_bcd_section(&root)?;
     }
     if want("grid_cover") {
         grid_cover_section(&root)?;

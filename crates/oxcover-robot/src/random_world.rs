@@ -11,7 +11,9 @@
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use crate::world::{Shape, World, WorldGeometry, segment_distance, segments_cross};
+use oxcover_grid::traverse::segment_distance;
+
+use crate::world::{Shape, World, WorldGeometry, segments_cross};
 
 /// What to draw.
 #[derive(Clone, Debug, PartialEq)]
@@ -180,10 +182,10 @@ fn polygon_distance(p: &[(f64, f64)], q: &[(f64, f64)]) -> f64 {
                 return 0.0;
             }
             best = best
-                .min(segment_distance(a, c, d))
-                .min(segment_distance(b, c, d))
-                .min(segment_distance(c, a, b))
-                .min(segment_distance(d, a, b));
+                .min(segment_distance(c, d, a))
+                .min(segment_distance(c, d, b))
+                .min(segment_distance(a, b, c))
+                .min(segment_distance(a, b, d));
         }
     }
     best

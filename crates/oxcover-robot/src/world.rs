@@ -35,6 +35,7 @@
 
 use std::path::Path;
 
+use oxcover_grid::traverse::segment_distance;
 use oxcover_grid::{Grid, Occupancy, OccupancyGrid, Point};
 use parry2d::math::{Pose, Vector};
 use parry2d::query::{Ray, RayCast};
@@ -668,7 +669,7 @@ impl WorldGeometry {
     pub fn clearance(&self, p: (f64, f64)) -> (f64, usize) {
         let mut best = (f64::INFINITY, 0);
         for &(a, b, s) in &self.segments {
-            let d = segment_distance(p, a, b);
+            let d = segment_distance(a, b, p);
             if d < best.0 {
                 best = (d, s);
             }
@@ -713,19 +714,6 @@ impl RayCaster for WorldGeometry {
         }
         best
     }
-}
-
-/// Distance from `p` to the segment `ab`.
-#[must_use]
-pub fn segment_distance(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 {
-        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p.0 - a.0 - t * dx).hypot(p.1 - a.1 - t * dy)
 }
 
 #[cfg(test)]

@@ -132,7 +132,8 @@ impl<'w> Explorer<'w> {
         }
         let map = &self.body.map;
         let pass = map.passable(self.body.keep + map.resolution());
-        let (dist, parent) = map.distances(&pass, self.body.p);
+        let targets: Vec<(f64, f64)> = items.iter().map(|i| i.3).collect();
+        let (dist, parent) = map.distances(&pass, self.body.p, &targets);
         let reach = |p: (f64, f64)| {
             let direct = (p.0 - self.body.p.0).hypot(p.1 - self.body.p.1);
             if direct < 1e-9 {

@@ -203,11 +203,24 @@ impl RobotMap {
         Passable { open, any }
     }
 
-    /// Route lengths (m) from `from` to every passable cell (8-connected
-    /// moves between cells); `None` where unreachable. The grid is indexed
-    /// as [`RobotMap::cell_index`].
-    pub(crate) fn distances(&self, pass: &Passable, from: (f64, f64)) -> (Vec<f64>, Vec<u32>) {
+    /// Route lengths (m) from `from` over passable cells (8-connected moves
+    /// between cells), infinite where unreachable; the search stops once the
+    /// nearest of `targets` (metre points) is settled, so only distances up
+    /// to that one are final (no target is nearer than it). The grid is
+    /// indexed as [`RobotMap::cell_index`].
+    pub(crate) fn distances(
+        &self,
+        pass: &Passable,
+        from: (f64, f64),
+        targets: &[(f64, f64)],
+    ) -> (Vec<f64>, Vec<u32>) {
         let n = self.w * self.h;
+        let mut is_target = vec![false; n];
+        for &t in targets {
+            if let Some(k) = self.index_of(t) {
+                is_target[k] = true;
+            }
+        }
         let mut dist = vec![f64::INFINITY; n];
         let mut parent = vec![u32::MAX; n];
         let Some(s) = self.index_of(from) else {
@@ -221,6 +234,9 @@ impl RobotMap {
             let dk = d as f64 / 1e6;
             if dk > dist[k] {
                 continue;
+            }
+            if is_target[k] {
+                break;
             }
             let (i, j) = ((k % self.w) as i64, (k / self.w) as i64);
             for (di, dj) in [
@@ -340,7 +356,7 @@ mod tests {
         }
         assert!(m.w * m.h > 40 * 40, "the map grew");
         let pass = m.passable(0.25);
-        let (dist, parent) = m.distances(&pass, (0.55, 2.0));
+        let (dist, parent) = m.distances(&pass, (0.55, 2.0), &[(5.55, 2.0)]);
         let k = m.cell_index((5.55, 2.0)).unwrap();
         assert!((dist[k] - 5.0).abs() < 0.2, "{}", dist[k]);
         let r = m.route(&pass, &parent, (5.55, 2.0));
