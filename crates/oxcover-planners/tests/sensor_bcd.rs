@@ -48,10 +48,9 @@ fn length_bound(world: &World, cfg: &Config) -> f64 {
     2.0 * world.width * world.height / (2.0 * cfg.tool_radius) + 3.0 * perimeter
 }
 
-fn check_random(seeds: std::ops::Range<u64>, noise_sd: f64) {
-    let spec = RandomWorldSpec::default();
+fn check_random(spec: &RandomWorldSpec, seeds: std::ops::Range<u64>, noise_sd: f64) {
     for seed in seeds {
-        let world = random_world(seed, &spec);
+        let world = random_world(seed, spec);
         let cfg = Config {
             noise_sd,
             seed,
@@ -80,12 +79,25 @@ fn check_random(seeds: std::ops::Range<u64>, noise_sd: f64) {
 
 #[test]
 fn random_worlds_are_covered_without_collision() {
-    check_random(0..10, 0.0);
+    check_random(&RandomWorldSpec::default(), 0..10, 0.0);
+}
+
+#[test]
+fn crowded_random_worlds_too() {
+    // Eight smaller obstacles in 9 m x 7 m, 0.5 m apart.
+    let spec = RandomWorldSpec {
+        width: 9.0,
+        height: 7.0,
+        obstacles: 8,
+        size: (0.4, 1.0),
+        ..RandomWorldSpec::default()
+    };
+    check_random(&spec, 200..204, 0.0);
 }
 
 #[test]
 fn random_worlds_with_range_noise_too() {
-    check_random(100..106, 0.003);
+    check_random(&RandomWorldSpec::default(), 100..106, 0.003);
 }
 
 fn room(text: &str) -> World {

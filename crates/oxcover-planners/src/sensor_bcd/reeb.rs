@@ -11,13 +11,17 @@
 //! critical point continues a cell; union-find over such joins gives the
 //! cells. The graph's nodes are the critical points, its edges the cells:
 //! each cell ends at the critical point nearest its end interval in the slab
-//! beyond that interval.
+//! beyond that interval (as many cells as its class has places for), and
+//! critical points between the same two slices are joined by the short
+//! lap-less cells their classes call for.
 
-use oxcover_robot::CriticalKind;
+use oxcover_robot::{Convexity, CriticalKind, Event};
 use serde::Serialize;
 
 /// Detections closer than this (m) are one critical point.
 pub(crate) const SAME_POINT: f64 = 0.05;
+/// Critical points closer than this along x (m) may be joined either way.
+const SAME_X: f64 = 0.01;
 
 /// One lap interval.
 #[derive(Clone, Debug)]
@@ -165,36 +169,33 @@ impl Reeb {
             k
         }
         for s in &self.slabs {
-            let (l, r): (Vec<usize>, Vec<usize>) = s
-                .intervals
-                .iter()
-                .partition(|&&k| self.intervals[k].slice == s.left);
+            let (l, r) = self.sides(s);
             if l.len() == 1 && r.len() == 1 && s.criticals.is_empty() {
                 let (a, b) = (find(&mut uf, l[0]), find(&mut uf, r[0]));
                 uf[a.max(b)] = a.min(b);
             }
         }
         let mut classes: Vec<Vec<usize>> = Vec::new();
-        let mut class_of = vec![usize::MAX; n];
-        for k in 0..n {
+        let mut cell_of = vec![usize::MAX; n];
+        let mut class_of_root = vec![usize::MAX; n];
+        for (k, cell) in cell_of.iter_mut().enumerate() {
             let root = find(&mut uf, k);
-            if class_of[root] == usize::MAX {
-                class_of[root] = classes.len();
+            if class_of_root[root] == usize::MAX {
+                class_of_root[root] = classes.len();
                 classes.push(Vec::new());
             }
-            classes[class_of[root]].push(k);
+            *cell = class_of_root[root];
+            classes[class_of_root[root]].push(k);
         }
-        let edges = classes
+        let mut edges: Vec<CellEdge> = classes
             .into_iter()
             .enumerate()
             .map(|(id, mut members)| {
                 members.sort_by_key(|&k| (self.intervals[k].slice, k));
-                let first = members[0];
-                let last = members[members.len() - 1];
                 CellEdge {
                     id,
-                    from: self.end_node(first, self.intervals[first].slice - 1),
-                    to: self.end_node(last, self.intervals[last].slice),
+                    from: None,
+                    to: None,
                     laps: members
                         .iter()
                         .map(|&k| (self.intervals[k].lo, self.intervals[k].hi))
@@ -203,36 +204,119 @@ impl Reeb {
                 }
             })
             .collect();
+        for s in self.slabs.iter().filter(|s| !s.criticals.is_empty()) {
+            self.join_slab(s, &cell_of, &mut edges);
+        }
         ReebGraph {
             nodes: self.criticals.clone(),
             edges,
         }
     }
 
-    /// The critical point nearest interval `k` in the slab (left slice
-    /// `left`) that touched it.
-    fn end_node(&self, k: usize, left: i64) -> Option<usize> {
-        let iv = &self.intervals[k];
-        let slab = self
-            .slabs
+    /// A slab's intervals on its −x slice and on its +x slice.
+    fn sides(&self, s: &SlabRecord) -> (Vec<usize>, Vec<usize>) {
+        s.intervals
             .iter()
-            .find(|s| s.left == left && s.intervals.contains(&k))?;
-        slab.criticals
-            .iter()
-            .map(|&c| {
-                let p = self.criticals[c].at;
-                let y = p.1.clamp(iv.lo.1, iv.hi.1);
-                ((p.0 - iv.lo.0).hypot(p.1 - y), c)
-            })
-            .min_by(|a, b| a.0.total_cmp(&b.0))
-            .map(|(_, c)| c)
+            .partition(|&&k| self.intervals[k].slice == s.left)
+    }
+
+    /// Ends the cells entering a slab at its critical points and starts the
+    /// cells leaving it there, and adds the short lap-less cells between
+    /// critical points of the same slab (closer in x than a lap spacing).
+    ///
+    /// A critical point's class fixes how many cells it has on each side: a
+    /// split one before and two after, a birth none and one, a merge two
+    /// and one, a death one and none. The cells crossing the slab's slices
+    /// take these places nearest first; places left over are joined in x
+    /// order, each point short of a cell after it to the next point along x
+    /// short of one before it.
+    fn join_slab(&self, s: &SlabRecord, cell_of: &[usize], edges: &mut Vec<CellEdge>) {
+        let want = |k: CriticalKind| match (k.event, k.convexity) {
+            (Event::In, Convexity::Convex) => (1usize, 2usize),
+            (Event::In, Convexity::Concave) => (0, 1),
+            (Event::Out, Convexity::Convex) => (2, 1),
+            (Event::Out, Convexity::Concave) => (1, 0),
+        };
+        let ks = &s.criticals;
+        let mut before: Vec<usize> = ks.iter().map(|&c| want(self.criticals[c].kind).0).collect();
+        let mut after: Vec<usize> = ks.iter().map(|&c| want(self.criticals[c].kind).1).collect();
+        let distance = |iv: usize, c: usize| {
+            let (iv, p) = (&self.intervals[iv], self.criticals[c].at);
+            let y = p.1.clamp(iv.lo.1, iv.hi.1);
+            (p.0 - iv.lo.0).hypot(p.1 - y)
+        };
+        let (left, right) = self.sides(s);
+        // Nearest first, within the places each class has; a cell left
+        // without a place ends at its nearest critical point regardless.
+        for (ends, places, entering) in [(&left, &mut before, true), (&right, &mut after, false)] {
+            let mut pairs: Vec<(f64, usize, usize)> = ends
+                .iter()
+                .flat_map(|&iv| (0..ks.len()).map(move |j| (iv, j)))
+                .map(|(iv, j)| (distance(iv, ks[j]), iv, j))
+                .collect();
+            pairs.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
+            let mut placed = vec![false; ends.len()];
+            let slot = |iv: usize| ends.iter().position(|&e| e == iv).unwrap_or(0);
+            for &(_, iv, j) in &pairs {
+                if !placed[slot(iv)] && places[j] > 0 {
+                    places[j] -= 1;
+                    placed[slot(iv)] = true;
+                    let e = &mut edges[cell_of[iv]];
+                    if entering {
+                        e.to = Some(ks[j])
+                    } else {
+                        e.from = Some(ks[j])
+                    }
+                }
+            }
+            for &(_, iv, j) in &pairs {
+                if !placed[slot(iv)] {
+                    placed[slot(iv)] = true;
+                    let e = &mut edges[cell_of[iv]];
+                    if entering {
+                        e.to = Some(ks[j])
+                    } else {
+                        e.from = Some(ks[j])
+                    }
+                }
+            }
+        }
+        // Points at the same x (within a centimetre: obstacles whose ends
+        // line up) may be joined either way, but not both ways.
+        let x = |j: usize| self.criticals[ks[j]].at.0;
+        let mut pairs: Vec<(usize, usize)> = (0..ks.len())
+            .flat_map(|a| (0..ks.len()).map(move |b| (a, b)))
+            .filter(|&(a, b)| a != b && x(b) >= x(a) - SAME_X)
+            .collect();
+        pairs.sort_by(|p, q| {
+            (x(p.1) - x(p.0))
+                .abs()
+                .total_cmp(&(x(q.1) - x(q.0)).abs())
+                .then(p.cmp(q))
+        });
+        let mut joined: Vec<(usize, usize)> = Vec::new();
+        for (a, b) in pairs {
+            if !joined.contains(&(b, a)) {
+                while after[a] > 0 && before[b] > 0 {
+                    joined.push((a, b));
+                    edges.push(CellEdge {
+                        id: edges.len(),
+                        from: Some(ks[a]),
+                        to: Some(ks[b]),
+                        laps: Vec::new(),
+                        covered: true,
+                    });
+                    after[a] -= 1;
+                    before[b] -= 1;
+                }
+            }
+        }
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use oxcover_robot::{Convexity, Event};
 
     const IN_CONVEX: CriticalKind = CriticalKind {
         event: Event::In,
@@ -335,5 +419,43 @@ mod tests {
         );
         assert!(ends.contains(&(Some(merge), None, 1)));
         assert!(g.edges.iter().all(|e| e.covered));
+    }
+
+    #[test]
+    fn two_merges_between_the_same_slices_are_joined_by_a_lapless_cell() {
+        // A C opening to +x whose arms end at x = 7.1 (upper) and 7.2
+        // (lower), both between slices 7.0 and 7.5: above the C, its pocket
+        // and below it enter the slab; one cell leaves it.
+        let mut r = Reeb::default();
+        let above = r.interval(14, (7.0, 7.6), (7.0, 9.8));
+        let pocket = r.interval(14, (7.0, 4.5), (7.0, 5.6));
+        let below = r.interval(14, (7.0, 0.2), (7.0, 2.5));
+        let after = r.interval(15, (7.5, 0.2), (7.5, 9.8));
+        let upper = r.critical((7.1, 6.0), (7.34, 6.0), (6.0, 6.0), OUT_CONVEX, true, 0.01);
+        let lower = r.critical((7.2, 4.0), (7.44, 4.0), (4.0, 4.0), OUT_CONVEX, true, 0.01);
+        r.slabs.push(SlabRecord {
+            left: 14,
+            intervals: vec![above, pocket, below, after],
+            criticals: vec![upper, lower],
+        });
+        let g = r.graph();
+        let ends = |iv: usize| {
+            let lap = (r.intervals[iv].lo, r.intervals[iv].hi);
+            let e = g
+                .edges
+                .iter()
+                .find(|e| e.laps.contains(&lap))
+                .expect("a cell");
+            (e.from, e.to)
+        };
+        assert_eq!(ends(above).1, Some(upper));
+        assert_eq!(ends(pocket).1, Some(upper));
+        assert_eq!(ends(below).1, Some(lower));
+        assert_eq!(ends(after).0, Some(lower));
+        let short: Vec<_> = g.edges.iter().filter(|e| e.laps.is_empty()).collect();
+        assert_eq!(short.len(), 1);
+        assert_eq!((short[0].from, short[0].to), (Some(upper), Some(lower)));
+        // Four cells with laps and the lap-less one.
+        assert_eq!(g.edges.len(), 5);
     }
 }
