@@ -33,5 +33,12 @@ fn concave_and_stacked_obstacles_are_covered_and_every_critical_point_found() {
         assert!(o.found.iter().all(|&f| f), "{name}: {:?}", o.found);
         assert_eq!(o.spurious, 0, "{name}");
         assert!(o.exploration.complete, "{name}");
+        // One loop of the graph per obstacle, as the free space's Reeb graph.
+        let g = &o.exploration.graph;
+        assert_eq!(
+            g.edges.len() + 1 - g.nodes.len(),
+            w.obstacles.len(),
+            "{name}"
+        );
     }
 }

@@ -168,11 +168,15 @@ impl<'w> Explorer<'w> {
         let start = self.reeb.intervals[k].clone();
         // Boundary on the left (turn clockwise) from an upper end heading +x…
         let turn = if top { -s } else { s };
+        let (xa, xb) = (self.slice_x(a), self.slice_x(b));
         let mut record = SlabRecord {
             left: a.min(b),
+            x: (xa.min(xb), xa.max(xb)),
             intervals: vec![k],
             criticals: Vec::new(),
+            boundary: Vec::new(),
         };
+        let trace_from = self.body.trace.len() - 1;
         let mut from_a = true;
         let mut exits: Vec<(Exit, f64)> = Vec::new();
         for _ in 0..MAX_RUNS {
@@ -182,7 +186,7 @@ impl<'w> Explorer<'w> {
             // ends, not only the one opposite the start: where the boundary
             // is steep, noise moves the crossing along the slice.)
             if exit == Exit::A && p.1 >= start.lo.1 - self.close && p.1 <= start.hi.1 + self.close {
-                self.finish(record, a, s);
+                self.finish(record, a, s, trace_from);
                 return Ok(());
             }
             // An exit seen before in this cycle: the loop is closed too (a
@@ -193,7 +197,7 @@ impl<'w> Explorer<'w> {
                 .any(|&(e, y)| e == exit && (y - p.1).abs() < self.close)
             {
                 self.counters.forced_closures += 1;
-                self.finish(record, a, s);
+                self.finish(record, a, s, trace_from);
                 return Ok(());
             }
             exits.push((exit, p.1));
@@ -207,7 +211,7 @@ impl<'w> Explorer<'w> {
                 record.intervals.push(j);
             }
             if j == k {
-                self.finish(record, a, s);
+                self.finish(record, a, s, trace_from);
                 return Ok(());
             }
             from_a = exit == Exit::A;
@@ -226,8 +230,13 @@ impl<'w> Explorer<'w> {
         q.x - p.x
     }
 
-    /// Marks the slab sides traced and keeps the record.
-    fn finish(&mut self, record: SlabRecord, a: i64, s: f64) {
+    /// Marks the slab sides traced and keeps the record, with the boundary
+    /// the robot traced since `trace_from` (closed along the start interval).
+    fn finish(&mut self, mut record: SlabRecord, a: i64, s: f64, trace_from: usize) {
+        record.boundary = self.body.trace[trace_from..]
+            .iter()
+            .map(|t| (t.x, t.y))
+            .collect();
         for &j in &record.intervals {
             let iv = &mut self.reeb.intervals[j];
             // The slab lies towards +s from slice a, towards −s from slice b.

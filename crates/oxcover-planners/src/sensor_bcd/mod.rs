@@ -44,7 +44,9 @@
 //! unconfirmed.
 //!
 //! **Incremental Reeb graph** ([`ReebGraph`]): nodes are the critical points,
-//! edges the cells (chains of laps). Every lap interval has two sides; a side
+//! edges the cells (chains of laps, and the short lap-less cells between
+//! critical points closer in x than a lap spacing, read off the boundary the
+//! robot traced round each slab). Every lap interval has two sides; a side
 //! whose slab has not been traced is an open end of an uncovered edge. After
 //! each cycle the robot travels, over its own map (what its rays saw free and
 //! where it has been, never unknown space), to the nearest such open end,
