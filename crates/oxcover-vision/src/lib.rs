@@ -1,0 +1,24 @@
+//! # oxcover-vision
+//!
+//! Occupancy grids from a single floor-facing camera (issue 7; Pavlicek,
+//! Mázl, Štěpán & Přeučil 2002, seed 004 §2).
+//!
+//! - [`camera`]: the paper's camera model: radial distortion about
+//!   `(u_c, v_c)` with `p₁..p₃` (and its inverse), the floor projection with
+//!   `x_cam, y_cam, Δu, Δv, X, Y`, and the rotation by `α + ω_rob` into the
+//!   world frame.
+//! - [`calibration`]: least-squares calibration (Levenberg–Marquardt on
+//!   nalgebra) of the distortion from points on straight lines and of the
+//!   projection from pixel–floor pairs, with residuals.
+//!
+//! Still to come (see the issue's closing note): HSV probability profiles,
+//! Bayes occupancy updates with visibility, the synthetic camera, the
+//! `map-from-camera` command and the `pavlicek2002-camera` experiment.
+
+pub mod calibration;
+pub mod camera;
+pub mod error;
+
+pub use calibration::{Fit, FloorPair, calibrate_distortion, calibrate_projection};
+pub use camera::{Camera, Distortion, Projection};
+pub use error::{Error, Result};
