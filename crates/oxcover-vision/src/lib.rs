@@ -10,15 +10,24 @@
 //! - [`calibration`]: least-squares calibration (Levenberg–Marquardt on
 //!   nalgebra) of the distortion from points on straight lines and of the
 //!   projection from pixel–floor pairs, with residuals.
+//! - [`profile`]: HSV conversion and the `free`/`occ` count matrices with
+//!   `P(R | Occ)` (serialisable).
+//! - [`occupancy`]: the paper's Bayes update (log-odds internally) and the
+//!   accumulation of visibility along rays from the robot, by product and
+//!   by recursive Bayes.
 //!
-//! Still to come (see the closing note): HSV probability profiles,
-//! Bayes occupancy updates with visibility, the synthetic camera, the
+//! Still to come (see the closing note): the synthetic camera
+//! (rendered images with ground truth, PNG), the image-to-grid pipeline, the
 //! `map-from-camera` command and the `pavlicek2002-camera` experiment.
 
 pub mod calibration;
 pub mod camera;
 pub mod error;
+pub mod occupancy;
+pub mod profile;
 
 pub use calibration::{Fit, FloorPair, calibrate_distortion, calibrate_projection};
 pub use camera::{Camera, Distortion, Projection};
 pub use error::{Error, Result};
+pub use occupancy::{LogOddsGrid, Visibility, bayes, with_visibility};
+pub use profile::{Profile, hsv};
