@@ -16,18 +16,24 @@
 //!   accumulation of visibility along rays from the robot, by product and
 //!   by recursive Bayes.
 //!
-//! Still to come (see the closing note): the synthetic camera
-//! (rendered images with ground truth, PNG), the image-to-grid pipeline, the
-//! `map-from-camera` command and the `pavlicek2002-camera` experiment.
+//! - [`synthetic`]: a synthetic camera rendering RGB images of a floor plan
+//!   (wall colours, floor texture, lighting, noise, lens distortion) from
+//!   robot poses, with the ground truth of every pixel.
+//!
+//! Still to come (see the closing note): the image-to-grid pipeline,
+//! PNG input and output, the `map-from-camera` command and the
+//! `pavlicek2002-camera` experiment.
 
 pub mod calibration;
 pub mod camera;
 pub mod error;
 pub mod occupancy;
 pub mod profile;
+pub mod synthetic;
 
 pub use calibration::{Fit, FloorPair, calibrate_distortion, calibrate_projection};
 pub use camera::{Camera, Distortion, Projection};
 pub use error::{Error, Result};
 pub use occupancy::{LogOddsGrid, Visibility, bayes, with_visibility};
 pub use profile::{Profile, hsv};
+pub use synthetic::{Lighting, Rendered, Seen, SyntheticScene};
