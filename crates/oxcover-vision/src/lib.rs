@@ -20,13 +20,18 @@
 //!   (wall colours, floor texture, lighting, noise, lens distortion) from
 //!   robot poses, with the ground truth of every pixel.
 //!
-//! Still to come (see the closing note): the image-to-grid pipeline,
-//! PNG input and output, the `map-from-camera` command and the
-//! `pavlicek2002-camera` experiment.
+//! - [`mapping`]: images to an occupancy grid (one reading per cell and
+//!   image, visibility, Bayes fusion), profile learning from labelled
+//!   images, the grid as a contract map, and scores against the truth (IoU
+//!   and per-class accuracy).
+//!
+//! Still to come (see the closing note): PNG input and output, the
+//! `map-from-camera` command and the `pavlicek2002-camera` experiment.
 
 pub mod calibration;
 pub mod camera;
 pub mod error;
+pub mod mapping;
 pub mod occupancy;
 pub mod profile;
 pub mod synthetic;
@@ -34,6 +39,7 @@ pub mod synthetic;
 pub use calibration::{Fit, FloorPair, calibrate_distortion, calibrate_projection};
 pub use camera::{Camera, Distortion, Projection};
 pub use error::{Error, Result};
+pub use mapping::{RgbImage, Scores, fuse, learn_profile, readings, score, seen_region, to_map};
 pub use occupancy::{LogOddsGrid, Visibility, bayes, with_visibility};
 pub use profile::{Profile, hsv};
 pub use synthetic::{Lighting, Rendered, Seen, SyntheticScene};

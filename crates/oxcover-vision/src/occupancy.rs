@@ -96,10 +96,12 @@ pub enum Visibility {
     Bayes,
 }
 
-/// The final grid from `p_occ` (per cell `P(Occ)`) seen from `robot`:
-/// every cell's emptiness is combined with the emptiness accumulated along
-/// the ray from the robot to it (rays to every cell of the border, sampled
-/// at a quarter cell; a cell gets the value of the first ray reaching it).
+/// The final grid from `p_occ` (per cell `P(Occ)`, NaN where this view saw
+/// nothing) seen from `robot`: every seen cell's emptiness is combined with
+/// the emptiness accumulated along the ray from the robot to it (rays to
+/// every cell of the border, sampled at a quarter cell; a cell gets the
+/// value of the first ray reaching it). Unseen cells (the blind zone at the
+/// camera's feet, outside its field) let the view through and stay NaN.
 #[must_use]
 pub fn with_visibility(
     p_occ: &Grid<f64>,
@@ -139,6 +141,9 @@ pub fn with_visibility(
                 continue;
             }
             last = Some(cell);
+            if p_occ[cell].is_nan() {
+                continue;
+            }
             let e = 1.0 - p_occ[cell];
             if out[cell].is_nan() {
                 out[cell] = 1.0 - e * acc;
@@ -153,8 +158,7 @@ pub fn with_visibility(
             };
         }
     }
-    // Cells no ray reached (none, with rays to the whole border) keep theirs.
-    Grid::from_fn(w, h, |c| if out[c].is_nan() { p_occ[c] } else { out[c] })
+    out
 }
 
 #[cfg(test)]
