@@ -39,7 +39,7 @@ enum Task {
         #[arg(long)]
         planners: Option<String>,
     },
-    /// Reproduce a paper's experiment: siamantas2010, siamantas2010-tracking, zhang2008, pavlicek2002, floorplans, lee2011 or demir2018.
+    /// Reproduce a paper's experiment: siamantas2010, siamantas2010-tracking, zhang2008, pavlicek2002, floorplans, lee2011, demir2018 or pavlicek2002-camera.
     Reproduce {
         /// Experiment name.
         name: String,

@@ -7,6 +7,14 @@ pub enum Error {
     /// A calibration could not be set up or did not converge.
     #[error("calibration: {0}")]
     Calibration(String),
+    /// An image file could not be read or written.
+    #[error("{path}: {message}")]
+    Image {
+        /// The file.
+        path: String,
+        /// What went wrong.
+        message: String,
+    },
     /// A parameter is out of range.
     #[error("{name} is `{value}`, expected {expected}")]
     BadParameter {

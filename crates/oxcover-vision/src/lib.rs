@@ -21,12 +21,13 @@
 //!   robot poses, with the ground truth of every pixel.
 //!
 //! - [`mapping`]: images to an occupancy grid (one reading per cell and
-//!   image, visibility, Bayes fusion), profile learning from labelled
-//!   images, the grid as a contract map, and scores against the truth (IoU
-//!   and per-class accuracy).
+//!   image, visibility, Bayes fusion by the paper's formula or discounted by
+//!   visibility), profile learning from labelled images, the grid as a
+//!   contract map, scores against the truth (IoU and per-class accuracy),
+//!   PNG input and output.
 //!
-//! Still to come (see the closing note): PNG input and output, the
-//! `map-from-camera` command and the `pavlicek2002-camera` experiment.
+//! The `oxcover map-from-camera` command and `cargo xtask reproduce
+//! pavlicek2002-camera` are built on these.
 
 pub mod calibration;
 pub mod camera;
@@ -39,7 +40,9 @@ pub mod synthetic;
 pub use calibration::{Fit, FloorPair, calibrate_distortion, calibrate_projection};
 pub use camera::{Camera, Distortion, Projection};
 pub use error::{Error, Result};
-pub use mapping::{RgbImage, Scores, fuse, learn_profile, readings, score, seen_region, to_map};
-pub use occupancy::{LogOddsGrid, Visibility, bayes, with_visibility};
+pub use mapping::{
+    Fusion, RgbImage, Scores, fuse, learn_profile, readings, score, seen_region, to_map,
+};
+pub use occupancy::{LogOddsGrid, Visibility, accumulated, bayes, with_visibility};
 pub use profile::{Profile, hsv};
 pub use synthetic::{Lighting, Rendered, Seen, SyntheticScene};

@@ -17,7 +17,10 @@
 //! occupied cell darken what lies behind it. Along a ray,
 //!
 //! - product: `E_acc ← E_acc · E`, and a cell's final `E_new = E · E_acc`
-//!   (accumulated before it);
+//!   (accumulated before it). Cells that read free (`P(Occ) < 0.5`) count
+//!   with `E = 1`: taken literally, the product of sixty floor cells each
+//!   0.95 empty is 0.05, and everything beyond three metres of clear floor
+//!   would read occupied;
 //! - recursive Bayes: `E_acc ← E·E_acc / (E·E_acc + (1 − E)(1 − E_acc))`,
 //!   `E_new` as above.
 //!
@@ -97,13 +100,29 @@ pub enum Visibility {
 }
 
 /// The final grid from `p_occ` (per cell `P(Occ)`, NaN where this view saw
-/// nothing) seen from `robot`: every seen cell's emptiness is combined with
-/// the emptiness accumulated along the ray from the robot to it (rays to
-/// every cell of the border, sampled at a quarter cell; a cell gets the
-/// value of the first ray reaching it). Unseen cells (the blind zone at the
-/// camera's feet, outside its field) let the view through and stay NaN.
+/// nothing) seen from `robot`: every seen cell's emptiness combined with
+/// the emptiness accumulated before it along the ray from the robot,
+/// `1 − E · E_acc` (the paper's formula; see [`accumulated`]).
 #[must_use]
 pub fn with_visibility(
+    p_occ: &Grid<f64>,
+    frame: &MapFrame,
+    robot: Point,
+    mode: Visibility,
+) -> Grid<f64> {
+    let acc = accumulated(p_occ, frame, robot, mode);
+    Grid::from_fn(p_occ.width(), p_occ.height(), |c| {
+        1.0 - (1.0 - p_occ[c]) * acc[c]
+    })
+}
+
+/// The emptiness accumulated along the ray from `robot` up to (not
+/// including) each seen cell: rays to every cell of the border, sampled at
+/// a quarter cell, a cell taking the value of the first ray reaching it.
+/// Unseen cells (NaN in `p_occ`: the blind zone at the camera's feet,
+/// outside its field) let the view through and stay NaN.
+#[must_use]
+pub fn accumulated(
     p_occ: &Grid<f64>,
     frame: &MapFrame,
     robot: Point,
@@ -146,10 +165,11 @@ pub fn with_visibility(
             }
             let e = 1.0 - p_occ[cell];
             if out[cell].is_nan() {
-                out[cell] = 1.0 - e * acc;
+                out[cell] = acc;
             }
             acc = match mode {
-                Visibility::Product => acc * e,
+                // A cell that reads free does not hide what is behind it.
+                Visibility::Product => acc * if p_occ[cell] < 0.5 { 1.0 } else { e },
                 Visibility::Bayes => {
                     let num = e * acc;
                     let den = num + (1.0 - e) * (1.0 - acc);

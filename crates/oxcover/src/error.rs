@@ -15,6 +15,9 @@ pub enum Error {
     /// A world file or robot description could not be used.
     #[error(transparent)]
     Robot(#[from] oxcover_robot::Error),
+    /// A camera, profile or image could not be used.
+    #[error(transparent)]
+    Vision(#[from] oxcover_vision::Error),
     /// A planner refused the problem or failed.
     #[error(transparent)]
     Planner(#[from] oxcover_planners::Error),

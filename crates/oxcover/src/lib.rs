@@ -20,7 +20,8 @@
 //! - [`render`]: SVG and PNG pictures with a metrics legend, and overlays
 //!   (coloured strokes, lines, markers) for states and graphs.
 //! - [`report`]: the JSON report of `plan --report`.
-//! - [`cli`], [`demo`]: the command line and its no-argument demo.
+//! - [`cli`], [`demo`]: the command line (including `map-from-camera`, on
+//!   `oxcover_vision`) and its no-argument demo.
 //!
 //! ```
 //! use oxcover::planner::{plan, PlanRequest};

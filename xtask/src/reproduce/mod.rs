@@ -6,6 +6,7 @@ mod decomposition_figure;
 pub mod demir2018;
 pub mod lee2011;
 pub mod pavlicek2002;
+pub mod pavlicek2002_camera;
 pub mod siamantas2010;
 pub mod siamantas2010_tracking;
 pub mod zhang2008;
@@ -23,9 +24,10 @@ pub fn run(name: &str) -> anyhow::Result<()> {
         "floorplans" => pavlicek2002::run_floorplans(),
         "lee2011" => lee2011::run(),
         "demir2018" => demir2018::run(),
+        "pavlicek2002-camera" => pavlicek2002_camera::run(),
         other => {
             anyhow::bail!(
-                "no experiment named `{other}`: expected siamantas2010, siamantas2010-tracking, zhang2008, pavlicek2002, floorplans, lee2011 or demir2018"
+                "no experiment named `{other}`: expected siamantas2010, siamantas2010-tracking, zhang2008, pavlicek2002, floorplans, lee2011, demir2018 or pavlicek2002-camera"
             )
         }
     }
