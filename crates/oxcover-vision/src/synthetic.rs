@@ -174,11 +174,15 @@ fn texture(c: [u8; 3], cell: Cell) -> [u8; 3] {
     c.map(|x| (i32::from(x) + d).clamp(0, 255) as u8)
 }
 
-/// A small seeded generator (SplitMix64) with Box–Muller normals.
-struct SplitMix(u64);
+/// A small seeded generator (SplitMix64) with Box–Muller normals: the
+/// renderer's noise, and the experiments' (same seed, same numbers on any
+/// machine).
+#[derive(Clone, Debug)]
+pub struct SplitMix(pub u64);
 
 impl SplitMix {
-    fn next(&mut self) -> f64 {
+    /// A uniform number in (0, 1).
+    pub fn uniform(&mut self) -> f64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -187,8 +191,9 @@ impl SplitMix {
         ((z >> 11) as f64 + 0.5) / (1u64 << 53) as f64
     }
 
-    fn normal(&mut self) -> f64 {
-        let (a, b) = (self.next(), self.next());
+    /// A standard normal number.
+    pub fn normal(&mut self) -> f64 {
+        let (a, b) = (self.uniform(), self.uniform());
         (-2.0 * a.ln()).sqrt() * (std::f64::consts::TAU * b).cos()
     }
 }

@@ -24,7 +24,7 @@ use oxcover_grid::{Cell, DiscRobot, Grid, OccupancyGrid};
 use oxcover_robot::World;
 use oxcover_vision::calibration::{FloorPair, calibrate_distortion, calibrate_projection};
 use oxcover_vision::occupancy::{LogOddsGrid, Visibility};
-use oxcover_vision::synthetic::{Lighting, Rendered, SyntheticScene};
+use oxcover_vision::synthetic::{Lighting, Rendered, SplitMix, SyntheticScene};
 use oxcover_vision::{
     Camera, Distortion, Fusion, Profile, Projection, RgbImage, Scores, fuse, learn_profile,
     readings, score, seen_region, to_map,
@@ -52,25 +52,6 @@ pub fn true_camera() -> Camera {
 /// Noise of the calibration pixels: line points, box corners (px).
 pub const CALIBRATION_NOISE: (f64, f64) = (0.3, 0.5);
 
-/// A small seeded normal generator (SplitMix64, Box–Muller).
-struct Noise(u64);
-
-impl Noise {
-    fn uniform(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        ((z >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    }
-
-    fn normal(&mut self) -> f64 {
-        let (a, b) = (self.uniform(), self.uniform());
-        (-2.0 * a.ln()).sqrt() * (std::f64::consts::TAU * b).cos()
-    }
-}
-
 /// The calibration result.
 pub struct Calibrated {
     /// The camera the pipeline uses.
@@ -88,7 +69,7 @@ pub struct Calibrated {
 /// # Errors
 /// Calibration failures.
 pub fn calibrate(truth: &Camera) -> anyhow::Result<Calibrated> {
-    let mut noise = Noise(2002);
+    let mut noise = SplitMix(2002);
     let d = truth.distortion;
     // A chequerboard's edges: 5 rows and 6 columns of lines, and a diagonal.
     let mut lines: Vec<Vec<(f64, f64)>> = Vec::new();
@@ -255,7 +236,7 @@ pub fn learn(truth: &Camera) -> anyhow::Result<Profile> {
         .flat_map_iter(|(i, light)| {
             let scene = &scene;
             poses.iter().enumerate().map(move |(j, &p)| {
-                let mut n = Noise((i * 100 + j) as u64);
+                let mut n = SplitMix((i * 100 + j) as u64);
                 let light = Lighting {
                     gain: light.gain * (1.0 + 0.08 * (2.0 * n.uniform() - 1.0)),
                     ..*light
@@ -336,7 +317,7 @@ pub fn run() -> anyhow::Result<()> {
         .par_iter()
         .enumerate()
         .map(|(k, &p)| {
-            let mut n = Noise(k as u64 + 7);
+            let mut n = SplitMix(k as u64 + 7);
             let light = Lighting {
                 gain: 0.9 + 0.2 * n.uniform(),
                 tint: [1.0, 1.0, 1.0],
