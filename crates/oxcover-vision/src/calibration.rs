@@ -299,16 +299,7 @@ mod tests {
     use crate::camera::Camera;
 
     fn truth() -> Camera {
-        Camera {
-            width: 320,
-            height: 240,
-            distortion: Distortion {
-                uc: 161.5,
-                vc: 118.0,
-                p: [2.0e-6, -1.5e-12, 4.0e-18],
-            },
-            projection: Projection::pinhole(220.0, 0.3, 0.5, -2.0, 0.02, 0.10),
-        }
+        crate::camera::test_camera()
     }
 
     /// Raw pixels of straight lines (straight after correction): a grid of

@@ -209,22 +209,27 @@ impl Camera {
     }
 }
 
+/// A 320×240 camera with barrel distortion, 0.3 m up, focal 220 px (for tests).
+#[cfg(test)]
+pub(crate) fn test_camera() -> Camera {
+    Camera {
+        width: 320,
+        height: 240,
+        distortion: Distortion {
+            uc: 161.5,
+            vc: 118.0,
+            p: [2.0e-6, -1.5e-12, 4.0e-18],
+        },
+        projection: Projection::pinhole(220.0, 0.3, 0.5, -2.0, 0.02, 0.10),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// A 320×240 camera with barrel distortion, 0.3 m up, focal 220 px.
-    pub(crate) fn camera() -> Camera {
-        Camera {
-            width: 320,
-            height: 240,
-            distortion: Distortion {
-                uc: 161.5,
-                vc: 118.0,
-                p: [2.0e-6, -1.5e-12, 4.0e-18],
-            },
-            projection: Projection::pinhole(220.0, 0.3, 0.5, -2.0, 0.02, 0.10),
-        }
+    fn camera() -> Camera {
+        test_camera()
     }
 
     #[test]

@@ -41,7 +41,7 @@ pub use calibration::{Fit, FloorPair, calibrate_distortion, calibrate_projection
 pub use camera::{Camera, Distortion, Projection};
 pub use error::{Error, Result};
 pub use mapping::{
-    Fusion, RgbImage, Scores, fuse, learn_profile, readings, score, seen_region, to_map,
+    Fusion, RgbImage, Scores, fuse, learn_profile, on_floor, readings, score, seen_region, to_map,
 };
 pub use occupancy::{LogOddsGrid, Visibility, accumulated, bayes, with_visibility};
 pub use profile::{Profile, hsv};

@@ -115,7 +115,33 @@ pub fn learn_profile(profile: &mut Profile, images: &[Rendered]) {
     }
 }
 
-/// One image's reading per cell (`P(R | Occ)`, NaN where unseen).
+/// The image laid on the floor (the paper's Fig. 5): for each cell within
+/// `range` of the camera, the colour of the pixel its centre projects to,
+/// `None` where it falls outside the image or out of range.
+#[must_use]
+pub fn on_floor(
+    frame: &MapFrame,
+    camera: &Camera,
+    image: &RgbImage,
+    robot: (f64, f64, f64),
+    range: f64,
+) -> Grid<Option<[u8; 3]>> {
+    let eye = camera
+        .projection
+        .to_world(robot, (camera.projection.x_cam, camera.projection.y_cam));
+    Grid::from_fn(frame.width(), frame.height(), |c| {
+        let q = frame.cell_center(c);
+        if (q.x - eye.0).hypot(q.y - eye.1) > range {
+            return None;
+        }
+        let (u, v) = camera.world_to_pixel(robot, (q.x, q.y))?;
+        (u >= 0.0 && v >= 0.0 && u < f64::from(image.width) && v < f64::from(image.height))
+            .then(|| image.rgb[(v as u32 * image.width + u as u32) as usize])
+    })
+}
+
+/// One image's reading per cell (`P(R | Occ)` of [`on_floor`]'s colour,
+/// NaN where unseen).
 #[must_use]
 pub fn readings(
     frame: &MapFrame,
@@ -125,25 +151,9 @@ pub fn readings(
     robot: (f64, f64, f64),
     range: f64,
 ) -> Grid<f64> {
-    let eye = camera
-        .projection
-        .to_world(robot, (camera.projection.x_cam, camera.projection.y_cam));
+    let colours = on_floor(frame, camera, image, robot, range);
     Grid::from_fn(frame.width(), frame.height(), |c| {
-        let q = frame.cell_center(c);
-        if (q.x - eye.0).hypot(q.y - eye.1) > range {
-            return f64::NAN;
-        }
-        match camera.world_to_pixel(robot, (q.x, q.y)) {
-            Some((u, v))
-                if u >= 0.0
-                    && v >= 0.0
-                    && u < f64::from(image.width)
-                    && v < f64::from(image.height) =>
-            {
-                profile.p_occ(image.rgb[(v as u32 * image.width + u as u32) as usize])
-            }
-            _ => f64::NAN,
-        }
+        colours[c].map_or(f64::NAN, |rgb| profile.p_occ(rgb))
     })
 }
 

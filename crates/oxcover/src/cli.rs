@@ -584,14 +584,14 @@ fn cmd_map_from_camera(a: &MapFromCameraArgs) -> Result<()> {
     let range = positive("--range", a.range)?;
     let camera: Camera = read_ron(&a.camera, "camera")?;
     let profile: Profile = read_ron(&a.profile, "profile")?;
-    if profile.bins == 0
-        || profile.free.len() != profile.bins.pow(3)
-        || profile.occ.len() != profile.bins.pow(3)
-    {
+    let cells = (1..=256)
+        .contains(&profile.bins)
+        .then(|| profile.bins.pow(3));
+    if cells.is_none_or(|n| profile.free.len() != n || profile.occ.len() != n) {
         return Err(Error::Argument {
             name: "profile",
             value: a.profile.display().to_string(),
-            expected: "bins³ free and occ counts".into(),
+            expected: "1 to 256 bins per axis and bins³ free and occ counts".into(),
         });
     }
     let text = std::fs::read_to_string(&a.poses).map_err(|e| Error::Read {

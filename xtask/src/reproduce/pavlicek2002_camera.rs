@@ -27,7 +27,7 @@ use oxcover_vision::occupancy::{LogOddsGrid, Visibility};
 use oxcover_vision::synthetic::{Lighting, Rendered, SplitMix, SyntheticScene};
 use oxcover_vision::{
     Camera, Distortion, Fusion, Profile, Projection, RgbImage, Scores, fuse, learn_profile,
-    readings, score, seen_region, to_map,
+    on_floor, readings, score, seen_region, to_map,
 };
 use rayon::prelude::*;
 
@@ -441,26 +441,9 @@ fn floor_picture(
     range: f64,
     file: &Path,
 ) -> anyhow::Result<()> {
-    let f = truth.frame();
-    let eye = cam
-        .projection
-        .to_world(robot, (cam.projection.x_cam, cam.projection.y_cam));
-    let cells = Grid::from_fn(f.width(), f.height(), |c: Cell| {
-        let q = f.cell_center(c);
-        if (q.x - eye.0).hypot(q.y - eye.1) > range {
-            return [255, 255, 255];
-        }
-        match cam.world_to_pixel(robot, (q.x, q.y)) {
-            Some((u, v))
-                if u >= 0.0
-                    && v >= 0.0
-                    && u < f64::from(img.width)
-                    && v < f64::from(img.height) =>
-            {
-                img.rgb[(v as u32 * img.width + u as u32) as usize]
-            }
-            _ => [255, 255, 255],
-        }
+    let colours = on_floor(truth.frame(), cam, img, robot, range);
+    let cells = Grid::from_fn(colours.width(), colours.height(), |c: Cell| {
+        colours[c].unwrap_or([255, 255, 255])
     });
     scaled_png(&cells, file)
 }
