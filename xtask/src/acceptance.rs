@@ -19,8 +19,8 @@
 
 use std::collections::BTreeMap;
 
-use anyhow::Context as _;
-use oxcover::planner::planners;
+use oxcover::pipeline::planners;
+use oxcover::planners::{CoverageProblem, Start};
 use oxcover_grid::io::{ReadOptions, read_map};
 use oxcover_grid::{DiscRobot, OccupancyGrid};
 use rayon::prelude::*;
@@ -63,14 +63,10 @@ fn run_one(
         Some((r, t)) => DiscRobot::new(r, t)?,
         None => DiscRobot::cell_sized(map.resolution()),
     };
-    let cell =
-        crate::largest_region_start(map, robot.robot_radius).context("no admissible cell")?;
-    let start = Some(map.frame().cell_center(cell));
+    let start = Start::LargestRegion;
     if let Some(&(_, limit)) = QUADRATIC.iter().find(|q| q.0 == planner) {
-        let problem = oxcover_grid::Coverability::new(map, robot, start)?;
-        let k = oxcover::planner::coarse_block(&robot, map.resolution());
-        let coarse = oxcover_grid::CoarseGrid::new(&problem.reachable, k);
-        let cells = coarse.representatives().as_slice().iter().flatten().count();
+        let problem = CoverageProblem::new(map, robot, start)?;
+        let cells = problem.input(0).coverage_cells();
         if cells > limit {
             return Ok(Outcome::Skipped(cells));
         }

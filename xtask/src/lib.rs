@@ -94,20 +94,6 @@ pub fn floor_plans() -> anyhow::Result<Vec<(String, oxcover_grid::OccupancyGrid)
     Ok(out)
 }
 
-/// The first cell (row-major) of the largest region of cells admissible for
-/// a disc of `robot_radius`: the start of the real-map experiments, since a
-/// SLAM map's first admissible cell is often a speck of noise.
-#[must_use]
-pub fn largest_region_start(
-    map: &oxcover_grid::OccupancyGrid,
-    robot_radius: f64,
-) -> Option<oxcover_grid::Cell> {
-    let adm = oxcover_grid::admissible(map, robot_radius);
-    let comps = oxcover_grid::components4(&adm);
-    let big = comps.largest()?;
-    adm.true_cells().find(|&c| comps.labels[c] == big)
-}
-
 /// Replaces the text between `<!-- BEGIN name -->` and `<!-- END name -->` in `file`.
 ///
 /// # Errors

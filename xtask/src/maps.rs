@@ -7,12 +7,12 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::Context as _;
 use oxcover::metrics::{MetricParams, evaluate};
 use oxcover::path::{read_csv, write_csv};
-use oxcover::planner::{PlanRequest, plan};
+use oxcover::pipeline::{PlanRequest, plan};
+use oxcover::planners::Start;
 use oxcover_grid::io::{ReadOptions, read_map};
-use oxcover_grid::{DiscRobot, OccupancyGrid, Point};
+use oxcover_grid::{DiscRobot, OccupancyGrid};
 use rayon::prelude::*;
 
 /// A map, a setting name, and optional (robot, tool) radii.
@@ -47,14 +47,12 @@ pub(crate) fn plan_and_score(
     map: &OccupancyGrid,
     planner: &str,
     robot: DiscRobot,
-    start: Option<Point>,
+    start: Start,
     csv: &Path,
 ) -> anyhow::Result<Scores> {
-    let request = PlanRequest {
-        robot,
-        start,
-        ..PlanRequest::new(planner, map.resolution())
-    };
+    let request = PlanRequest::new(planner, map.resolution())?
+        .robot(robot)
+        .start(start);
     let out = plan(map, &request)?;
     // Score the written file, as `oxcover eval` would.
     write_csv(csv, &out.points)?;
@@ -93,18 +91,14 @@ fn check(
         &map,
         "dtc",
         robot,
-        None,
+        Start::First,
         &dir.join(format!("{stem}-default.csv")),
     )?;
-    // The first admissible cell of the largest admissible region.
-    let cell =
-        crate::largest_region_start(&map, robot.robot_radius).context("no admissible cell")?;
-    let start = Some(map.frame().cell_center(cell));
     let largest = plan_and_score(
         &map,
         "dtc",
         robot,
-        start,
+        Start::LargestRegion,
         &dir.join(format!("{stem}-largest.csv")),
     )?;
     Ok(Row {

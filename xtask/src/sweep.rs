@@ -17,9 +17,10 @@ use std::path::{Path, PathBuf};
 use std::str::FromStr;
 use std::time::Instant;
 
-use oxcover::planner::{PlanRequest, plan};
+use oxcover::pipeline::{PlanRequest, plan};
+use oxcover::planners::{Start, largest_region_start};
+use oxcover_grid::OccupancyGrid;
 use oxcover_grid::random::{blobs, random_density, rectangles, uniform_connected};
-use oxcover_grid::{OccupancyGrid, components4};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -145,22 +146,16 @@ pub fn sweep_map(spec: &SweepSpec, i: usize) -> OccupancyGrid {
 #[must_use]
 pub fn run_map(spec: &SweepSpec, i: usize) -> MapRecord {
     let map = sweep_map(spec, i);
-    let free = map.free_mask();
-    let comps = components4(&free);
-    let start = comps
-        .largest()
-        .and_then(|l| free.true_cells().find(|&c| comps.labels[c] == l))
-        .unwrap_or_default();
+    // The robot is a point: admissible cells are the free ones.
+    let start = largest_region_start(&map, 0.0).unwrap_or_default();
     let mut results = BTreeMap::new();
     for name in &spec.planners {
-        let request = PlanRequest {
-            start: Some(map.frame().cell_center(start)),
-            boundary_pass: false,
+        let request = PlanRequest::new(name, map.resolution()).map(|r| PlanRequest {
             seed: spec.seed + i as u64,
-            ..PlanRequest::new(name, map.resolution())
-        };
+            ..r.start(Start::LargestRegion).boundary_pass(false)
+        });
         let t = Instant::now();
-        let rec = match plan(&map, &request) {
+        let rec = match request.and_then(|r| plan(&map, &r)) {
             Ok(out) => {
                 let m = &out.evaluation.metrics;
                 PlannerRecord {
@@ -185,7 +180,7 @@ pub fn run_map(spec: &SweepSpec, i: usize) -> MapRecord {
         map: i,
         seed: spec.seed + i as u64,
         size: spec.size,
-        free: free.count_true(),
+        free: map.counts().free,
         start: [start.row, start.col],
         results,
     }
@@ -314,7 +309,7 @@ pub fn cli(
     summary: Option<&Path>,
 ) -> anyhow::Result<()> {
     for p in &spec.planners {
-        oxcover::planner::find_planner(p)?;
+        oxcover::planners::find(p)?;
     }
     let records = run(spec, shard);
     let lines = to_lines(&records)?;

@@ -130,3 +130,198 @@ fn ci_runs_the_readme_test_command() {
         ".ci/run must run the README's test command `{cmd}`"
     );
 }
+
+/// The module path of a source file under `src` (`lib.rs`/`main.rs` → the
+/// root `""`, `a/mod.rs` and `a.rs` → `a`, `a/b.rs` → `a::b`).
+fn module_of(src: &Path, file: &Path) -> Option<String> {
+    let rel = file.strip_prefix(src).ok()?;
+    let mut parts: Vec<String> = rel
+        .iter()
+        .map(|p| p.to_string_lossy().trim_end_matches(".rs").to_string())
+        .collect();
+    if matches!(
+        parts.last().map(String::as_str),
+        Some("mod" | "lib" | "main")
+    ) {
+        parts.pop();
+    }
+    Some(parts.join("::"))
+}
+
+/// Module-to-module references of one crate's `src`: `crate::a::b` and
+/// `super::x` paths, resolved to the longest known module. Re-exports
+/// (`pub use`), module declarations and the crate root are left out: a
+/// root that re-exports its modules is no dependency of theirs.
+fn module_edges(src: &Path) -> Vec<(String, String)> {
+    let mut files = Vec::new();
+    rust_files(src, &mut files);
+    let mods: std::collections::BTreeMap<String, PathBuf> = files
+        .iter()
+        .filter_map(|f| module_of(src, f).map(|m| (m, f.clone())))
+        .collect();
+    let resolve = |path: &[&str]| -> Option<String> {
+        (1..=path.len())
+            .rev()
+            .map(|n| path[..n].join("::"))
+            .find(|m| mods.contains_key(m))
+    };
+    let mut edges = Vec::new();
+    for (me, file) in &mods {
+        let text = std::fs::read_to_string(file).expect("readable source");
+        let code = text.split("#[cfg(test)]").next().unwrap_or("");
+        for line in code.lines().map(str::trim) {
+            if line.starts_with("//")
+                || line.starts_with("pub use")
+                || line.starts_with("pub(crate) use")
+            {
+                continue;
+            }
+            for (prefix, base) in [
+                ("crate::", Vec::new()),
+                ("super::", {
+                    let mut b: Vec<&str> = me.split("::").collect();
+                    // A `mod.rs`'s `super` is its parent; a file's too.
+                    b.pop();
+                    b
+                }),
+            ] {
+                for (i, _) in line.match_indices(prefix) {
+                    // `crate::` inside a longer identifier (`oxcover_crate::`) is not ours.
+                    if line[..i].ends_with(|c: char| c.is_alphanumeric() || c == '_') {
+                        continue;
+                    }
+                    let rest = &line[i + prefix.len()..];
+                    let mut path = base.clone();
+                    path.extend(
+                        rest.split("::")
+                            .map(|s| {
+                                s.split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                                    .next()
+                                    .unwrap_or("")
+                            })
+                            .take_while(|s| {
+                                !s.is_empty() && s.starts_with(|c: char| c.is_lowercase())
+                            }),
+                    );
+                    if let Some(to) = resolve(&path).filter(|to| !to.is_empty() && to != me) {
+                        edges.push((me.clone(), to));
+                    }
+                }
+            }
+        }
+    }
+    edges.sort();
+    edges.dedup();
+    edges
+}
+
+/// A cycle in `edges`, if any (as the modules along it).
+fn find_cycle(edges: &[(String, String)]) -> Option<Vec<String>> {
+    use std::collections::BTreeMap;
+    let mut next: BTreeMap<&str, Vec<&str>> = BTreeMap::new();
+    for (a, b) in edges {
+        next.entry(a).or_default().push(b);
+    }
+    // 0 unvisited, 1 on the stack, 2 done.
+    fn visit<'a>(
+        n: &'a str,
+        next: &BTreeMap<&'a str, Vec<&'a str>>,
+        state: &mut BTreeMap<&'a str, u8>,
+        stack: &mut Vec<&'a str>,
+    ) -> Option<Vec<String>> {
+        state.insert(n, 1);
+        stack.push(n);
+        for &m in next.get(n).map(Vec::as_slice).unwrap_or_default() {
+            match state.get(m).copied().unwrap_or(0) {
+                1 => {
+                    let at = stack.iter().position(|&s| s == m).unwrap_or(0);
+                    let mut cycle: Vec<String> =
+                        stack[at..].iter().map(|s| (*s).to_string()).collect();
+                    cycle.push(m.to_string());
+                    return Some(cycle);
+                }
+                0 => {
+                    if let Some(c) = visit(m, next, state, stack) {
+                        return Some(c);
+                    }
+                }
+                _ => {}
+            }
+        }
+        stack.pop();
+        state.insert(n, 2);
+        None
+    }
+    let mut state = BTreeMap::new();
+    let nodes: Vec<&str> = next.keys().copied().collect();
+    for n in nodes {
+        if state.get(n).copied().unwrap_or(0) == 0 {
+            let mut stack = Vec::new();
+            if let Some(c) = visit(n, &next, &mut state, &mut stack) {
+                return Some(c);
+            }
+        }
+    }
+    None
+}
+
+#[test]
+fn no_import_circles_between_modules_of_a_crate() {
+    let mut crates: Vec<PathBuf> = std::fs::read_dir(root().join("crates"))
+        .expect("crates dir")
+        .flatten()
+        .map(|e| e.path().join("src"))
+        .collect();
+    crates.push(root().join("xtask/src"));
+    for src in crates {
+        let edges = module_edges(&src);
+        if let Some(cycle) = find_cycle(&edges) {
+            panic!("{}: import circle {}", src.display(), cycle.join(" -> "));
+        }
+    }
+}
+
+#[test]
+fn the_cycle_finder_finds_cycles() {
+    let e = |a: &str, b: &str| (a.to_string(), b.to_string());
+    assert!(find_cycle(&[e("a", "b"), e("b", "c")]).is_none());
+    let c = find_cycle(&[e("a", "b"), e("b", "c"), e("c", "a")]).expect("a cycle");
+    assert_eq!(c.first(), c.last());
+}
+
+/// Where the planners' input and the coverage problem may be built: their
+/// home (`problem.rs`), the grid crate (the contract's cells), the metrics
+/// (a path is scored on the contract's problem from its own start) and the
+/// boundary pass's own tests (it takes the contract's cells).
+#[test]
+fn planner_inputs_are_built_in_their_home() {
+    let home = |f: &Path| {
+        let s = f.to_string_lossy().replace('\\', "/");
+        s.ends_with("oxcover-planners/src/problem.rs")
+            || s.contains("crates/oxcover-grid/")
+            || s.ends_with("crates/oxcover/src/metrics.rs")
+            || s.ends_with("oxcover-planners/src/boundary_pass.rs")
+            || s.ends_with("xtask/tests/tidy.rs")
+    };
+    for f in sources() {
+        if home(&f) {
+            continue;
+        }
+        let text = std::fs::read_to_string(&f).expect("readable source");
+        for bad in [
+            "PlannerInput {",
+            "PlannerInput::new",
+            "Coverability::new(",
+            "Coverability::with_start_cell(",
+            "Coverability {",
+            "fn coarse_block",
+            "fn largest_region_start",
+        ] {
+            assert!(
+                !text.contains(bad),
+                "{}: `{bad}` outside its home; build a CoverageProblem (oxcover_planners::problem)",
+                f.display()
+            );
+        }
+    }
+}

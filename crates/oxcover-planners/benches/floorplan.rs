@@ -19,9 +19,9 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use oxcover_grid::DiscRobot;
 use oxcover_grid::io::{ReadOptions, read_map};
-use oxcover_grid::{CoarseGrid, Coverability, DiscRobot};
-use oxcover_planners::{PlannerInput, find};
+use oxcover_planners::{CoverageProblem, Start, find};
 
 /// Planners measured, the reference first.
 const PLANNERS: [&str; 7] = [
@@ -47,17 +47,8 @@ fn floorplan(c: &mut Criterion) {
     };
     let robot = DiscRobot::new(0.3, 0.3).expect("valid radii");
     // Start in the largest admissible region (the default start may be a speck).
-    let adm = oxcover_grid::admissible(&map, robot.robot_radius);
-    let comps = oxcover_grid::components4(&adm);
-    let big = comps.largest().expect("admissible cells");
-    let start = adm
-        .true_cells()
-        .find(|&c| comps.labels[c] == big)
-        .expect("a start");
-    let problem = Coverability::with_start_cell(&map, robot, start).expect("problem");
-    let coarse = CoarseGrid::new(&problem.reachable, 12);
-    let mut input = PlannerInput::new(&problem.reachable, &coarse, problem.start);
-    input.frame = *map.frame();
+    let problem = CoverageProblem::new(&map, robot, Start::LargestRegion).expect("problem");
+    let input = problem.input(0);
     let mut g = c.benchmark_group("floorplan");
     g.sample_size(10)
         .warm_up_time(Duration::from_millis(500))
@@ -67,12 +58,17 @@ fn floorplan(c: &mut Criterion) {
         g.bench_function(name, |b| b.iter(|| black_box(planner.plan(&input))));
     }
     // Border expansion's parts: the exact distance transform, then the roads.
-    let blocked = problem.reachable.map(|&p| !p);
+    let blocked = problem.plannable().map(|&p| !p);
     g.bench_function("parts/edt", |b| {
         b.iter(|| black_box(oxcover_grid::edt::boundary_distance_sq4(&blocked, true)));
     });
     g.bench_function("parts/border-expansion-roads", |b| {
-        b.iter(|| black_box(oxcover_decomp::border_expansion(&problem.reachable, 12.0)));
+        b.iter(|| {
+            black_box(oxcover_decomp::border_expansion(
+                problem.plannable(),
+                problem.block() as f64,
+            ))
+        });
     });
     g.finish();
 }

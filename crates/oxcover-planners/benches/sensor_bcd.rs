@@ -20,9 +20,9 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use oxcover_grid::{CoarseGrid, Coverability, DiscRobot, Point};
+use oxcover_grid::{DiscRobot, Point};
 use oxcover_planners::sensor_bcd::{Config, explore};
-use oxcover_planners::{PlannerInput, find};
+use oxcover_planners::{CoverageProblem, Start, find};
 use oxcover_robot::{World, WorldGeometry};
 
 /// Worlds measured.
@@ -44,13 +44,9 @@ fn sensor_bcd(c: &mut Criterion) {
             b.iter(|| black_box(explore(&geometry, start, &cfg).expect("explored")));
         });
         let map = world.rasterise();
-        let problem =
-            Coverability::new(&map, robot, Some(Point::new(start.0, start.1))).expect("problem");
-        let k = (2.0 * robot.tool_radius / map.resolution() + 1e-6).floor() as usize;
-        let coarse = CoarseGrid::new(&problem.reachable, k);
-        let mut input = PlannerInput::new(&problem.reachable, &coarse, problem.start);
-        input.frame = *map.frame();
-        input.tool_cells = robot.tool_radius / map.resolution();
+        let problem = CoverageProblem::new(&map, robot, Start::At(Point::new(start.0, start.1)))
+            .expect("problem");
+        let input = problem.input(0);
         let planner = find("boustrophedon").expect("registered");
         g.bench_function(format!("boustrophedon/{name}"), |b| {
             b.iter(|| black_box(planner.plan(&input)));

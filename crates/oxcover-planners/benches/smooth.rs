@@ -18,9 +18,9 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use oxcover_grid::DiscRobot;
 use oxcover_grid::io::{ReadOptions, read_map};
-use oxcover_grid::{CoarseGrid, Coverability, DiscRobot};
-use oxcover_planners::{PlannerInput, find};
+use oxcover_planners::{CoverageProblem, Start, find};
 
 /// Planners measured, the reference first.
 const PLANNERS: [&str; 3] = ["dtc", "bsa", "smooth"];
@@ -35,12 +35,8 @@ fn smooth(c: &mut Criterion) {
     for room in ["living", "office", "workshop"] {
         let map =
             read_map(&dir.join(format!("{room}.yaml")), &ReadOptions::new()).expect("bundled map");
-        let problem = Coverability::new(&map, robot, None).expect("problem");
-        let k = (2.0 * robot.tool_radius / map.resolution() + 1e-6).floor() as usize;
-        let coarse = CoarseGrid::new(&problem.reachable, k);
-        let mut input = PlannerInput::new(&problem.reachable, &coarse, problem.start);
-        input.frame = *map.frame();
-        input.tool_cells = robot.tool_radius / map.resolution();
+        let problem = CoverageProblem::new(&map, robot, Start::First).expect("problem");
+        let input = problem.input(0);
         for name in PLANNERS {
             let planner = find(name).expect("registered");
             g.bench_function(format!("{name}/{room}"), |b| {

@@ -22,7 +22,8 @@ use oxcover_grid::traverse::{GridPoint, cell_center};
 
 use crate::error::{Error, Result};
 use crate::metre_path::PathBuilder;
-use crate::planner::{PlanOutput, Planner, PlannerInput};
+use crate::planner::Planner;
+use crate::problem::{PlanOutput, PlannerInput};
 
 /// Largest deviation (cells) of a straightened road from its cells.
 const ROAD_TOLERANCE: f64 = 0.5;
@@ -81,7 +82,7 @@ impl BorderExpansionPlanner {
         let Walk {
             mut path, order, ..
         } = walk;
-        path.cover_leftovers(input.coarse, input.tool_cells)?;
+        path.cover_leftovers(input.coarse, input.visit_radius())?;
         Ok(BorderPlan {
             roads,
             order,
@@ -260,19 +261,14 @@ fn road_distance(cells: &[Cell], p: GridPoint) -> (f64, usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use oxcover_grid::io::parse_ascii;
+
     use oxcover_grid::traverse::segment_clear;
-    use oxcover_grid::{CoarseGrid, Coverability, DiscRobot};
 
     fn plan(text: &str, block: usize) -> (BorderPlan, oxcover_grid::Grid<bool>) {
-        let (map, start) = parse_ascii(text).unwrap();
-        let p = Coverability::with_start_cell(&map, DiscRobot::cell_sized(1.0), start.unwrap())
-            .unwrap();
-        let coarse = CoarseGrid::new(&p.reachable, block);
-        let input = PlannerInput::new(&p.reachable, &coarse, p.start);
+        let p = crate::testing::problem(text, block);
         (
-            BorderExpansionPlanner.plan_detailed(&input).unwrap(),
-            p.reachable,
+            BorderExpansionPlanner.plan_detailed(&p.input(0)).unwrap(),
+            p.plannable().clone(),
         )
     }
 

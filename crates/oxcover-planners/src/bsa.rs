@@ -18,7 +18,8 @@
 use oxcover_grid::{Cell, Dir4, Grid};
 
 use crate::error::{Error, Result};
-use crate::planner::{PlanOutput, Planner, PlannerInput};
+use crate::planner::Planner;
+use crate::problem::{PlanOutput, PlannerInput};
 use crate::route::CoarseRouter;
 
 /// The `bsa` planner.

@@ -17,7 +17,7 @@
 //!   route keeps its heading where a shortest route allows.
 //!
 //! Everything runs on the coverage grid (its connected moves), so the path is a
-//! coverage path; [`crate::expand`] makes it fine. O(cells) for the labels and
+//! coverage path; [`crate::CoverageProblem::expand`] makes it fine. O(cells) for the labels and
 //! the walk, plus one CIDT per jump. [`DtcWorkspace`] reuses its buffers across
 //! runs (full DTC runs DTC once per goal).
 
@@ -25,7 +25,8 @@ use oxcover_distance::{Wavefront, cidt};
 use oxcover_grid::{Cell, CoarseGrid, Dir4, Grid};
 
 use crate::error::{Error, Result};
-use crate::planner::{PlanOutput, Planner, PlannerInput};
+use crate::planner::Planner;
+use crate::problem::{PlanOutput, PlannerInput};
 
 /// The `dtc` planner.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

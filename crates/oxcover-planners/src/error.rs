@@ -42,6 +42,19 @@ pub enum Error {
         /// What is accepted.
         expected: &'static str,
     },
+    /// An option given to a planner that does not take it.
+    #[error("{option} is `{value}`, expected {option} only with --planner {takers}")]
+    OptionNotTaken {
+        /// The option.
+        option: &'static str,
+        /// The value given, with the planner.
+        value: String,
+        /// The planners that take it.
+        takers: String,
+    },
+    /// The map, robot or start does not make a coverage problem.
+    #[error(transparent)]
+    Map(#[from] oxcover_grid::Error),
     /// No planner by that name.
     #[error("no planner named `{0}`")]
     UnknownPlanner(String),

@@ -7,11 +7,12 @@
 //! O(n²); refused above [`FullDtc::MAX_CELLS`] coverage cells. The planner
 //! returns the shortest path; ties go to the goal first in row-major order.
 
-use oxcover_grid::Cell;
+use oxcover_grid::{Cell, CoarseGrid};
 
 use crate::dtc::DtcWorkspace;
 use crate::error::{Error, Result};
-use crate::planner::{PlanOutput, Planner, PlannerInput, steps};
+use crate::planner::{Planner, steps};
+use crate::problem::{PlanOutput, PlannerInput};
 
 /// The `full-dtc` planner.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -43,12 +44,12 @@ pub struct FullDtcResult {
     pub runs: usize,
 }
 
-/// Runs DTC towards every reachable coverage cell.
+/// Runs DTC from the coverage cell `start` towards every reachable coverage cell.
 ///
 /// # Errors
 /// [`Error::TooLarge`] above [`FullDtc::MAX_CELLS`]; DTC's own errors.
-pub fn full_dtc(input: &PlannerInput<'_>) -> Result<FullDtcResult> {
-    let cells = input.coverage_cells();
+pub fn full_dtc(coarse: &CoarseGrid, start: Cell) -> Result<FullDtcResult> {
+    let cells = coarse.representatives().count(Option::is_some);
     if cells > FullDtc::MAX_CELLS {
         return Err(Error::TooLarge {
             planner: "full-dtc",
@@ -57,14 +58,13 @@ pub fn full_dtc(input: &PlannerInput<'_>) -> Result<FullDtcResult> {
             hint: " (it runs DTC once per goal; use dtc)",
         });
     }
-    let coarse = input.coarse;
     let mut ws = DtcWorkspace::new(coarse);
     let mut best: Option<(Vec<Cell>, Cell)> = None;
     let mut worst: Option<(Vec<Cell>, Cell)> = None;
     let mut runs = 0;
     let goals: Vec<Cell> = coarse.passable().true_cells().collect();
     for goal in goals {
-        let Ok(path) = ws.run(coarse, input.start, Some(goal)) else {
+        let Ok(path) = ws.run(coarse, start, Some(goal)) else {
             // Not reachable from the start in the coverage grid.
             continue;
         };
@@ -99,7 +99,9 @@ impl Planner for FullDtc {
         "DTC towards every possible goal, keeping the shortest path (seed 000's baseline; O(n^2))"
     }
     fn plan(&self, input: &PlannerInput<'_>) -> Result<PlanOutput> {
-        Ok(PlanOutput::Coverage(full_dtc(input)?.shortest))
+        Ok(PlanOutput::Coverage(
+            full_dtc(input.coarse, input.start)?.shortest,
+        ))
     }
 }
 
@@ -108,22 +110,18 @@ mod tests {
     use super::*;
     use crate::dtc::Dtc;
     use crate::testing::plan_ascii;
-    use oxcover_grid::io::parse_ascii;
-    use oxcover_grid::{CoarseGrid, Coverability, DiscRobot};
 
     #[test]
     fn brackets_every_single_goal_run() {
         let text = "S..#\n.#..\n....";
-        let (map, s) = parse_ascii(text).unwrap();
-        let p =
-            Coverability::with_start_cell(&map, DiscRobot::cell_sized(1.0), s.unwrap()).unwrap();
-        let coarse = CoarseGrid::new(&p.reachable, 1);
-        let input = PlannerInput::new(&p.reachable, &coarse, s.unwrap());
-        let r = full_dtc(&input).unwrap();
+        let p = crate::testing::problem(text, 1);
+        let input = p.input(0);
+        let coarse = input.coarse;
+        let r = full_dtc(coarse, input.start).unwrap();
         assert_eq!(r.runs, 10);
         for goal in coarse.passable().true_cells() {
-            let mut dtc = DtcWorkspace::new(&coarse);
-            let n = steps(&dtc.run(&coarse, input.start, Some(goal)).unwrap());
+            let mut dtc = DtcWorkspace::new(coarse);
+            let n = steps(&dtc.run(coarse, input.start, Some(goal)).unwrap());
             assert!(steps(&r.shortest) <= n && n <= steps(&r.longest));
         }
         // A Hamiltonian path exists (10 cells, 9 moves) and some goal finds it.

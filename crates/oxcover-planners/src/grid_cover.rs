@@ -32,7 +32,8 @@ use oxcover_distance::{Wavefront, cidt};
 use oxcover_grid::{Cell, CoarseGrid, Dir4, Grid};
 
 use crate::error::{Error, Result};
-use crate::planner::{PlanOutput, Planner, PlannerInput};
+use crate::planner::Planner;
+use crate::problem::{PlanOutput, PlannerInput};
 
 /// The `grid-cover` planner.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -320,9 +321,10 @@ fn retrace(d: &Grid<Option<u32>>, target: Cell) -> Vec<Cell> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::problem::{CoverageProblem, Start};
     use crate::testing::{cells, plan_ascii};
     use oxcover_grid::random::{random_density, uniform_connected};
-    use oxcover_grid::{Coverability, DiscRobot, OccupancyGrid};
+    use oxcover_grid::{DiscRobot, OccupancyGrid};
     use proptest::prelude::*;
 
     #[test]
@@ -355,10 +357,9 @@ mod tests {
         #[test]
         fn same_path_as_the_reference(w in 2usize..11, h in 2usize..11, density in 0.0f64..0.4, seed in any::<u64>()) {
             let map = random_density(w, h, density, seed);
-            let Ok(p) = Coverability::new(&map, DiscRobot::cell_sized(1.0), None) else { return Ok(()); };
-            let coarse = CoarseGrid::new(&p.reachable, 1);
-            let fast = grid_cover(&coarse, p.start).unwrap();
-            let slow = grid_cover_reference(&map.free_mask(), p.start);
+            let Ok(p) = CoverageProblem::new(&map, DiscRobot::cell_sized(1.0), Start::First) else { return Ok(()); };
+            let fast = grid_cover(p.coarse(), p.start_cell()).unwrap();
+            let slow = grid_cover_reference(&map.free_mask(), p.start_cell());
             prop_assert_eq!(fast, slow);
         }
     }

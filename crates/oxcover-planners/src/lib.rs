@@ -1,7 +1,10 @@
 //! # oxcover-planners
 //!
 //! Coverage planners on grid maps, behind one [`Planner`] trait and one
-//! [`registry`]:
+//! [`registry()`] ([`build`] sets a planner's options, e.g. a sweep angle), and
+//! the coverage problem they all work on ([`CoverageProblem`]: made once from
+//! a map, a robot and a [`Start`]; it hands planners their [`PlannerInput`]
+//! and expands, leads in and boundary-passes their plans):
 //!
 //! | name | module | source | complete |
 //! |---|---|---|---|
@@ -26,22 +29,21 @@
 //!
 //! Planners work on the coverage grid ([`oxcover_grid::CoarseGrid`]; one tool
 //! diameter per cell, the fine grid itself with the default radii) and return
-//! coverage or fine cell paths; [`expand`] makes every plan a 4-connected path
+//! coverage or fine cell paths; [`CoverageProblem::expand`] makes every plan a 4-connected path
 //! of plannable fine cells. The sweep and border-expansion planners return
 //! metre paths whose every segment is checked cell by cell against the
 //! plannable mask (exact traversal), so they too never cross a wall. [`boundary_pass()`] covers what a plan left uncovered
 //! along walls (seed 004's extra run along obstacle boundaries).
 //!
 //! ```
-//! use oxcover_grid::{io::parse_ascii, CoarseGrid};
-//! use oxcover_planners::{find, expand, PlannerInput};
+//! use oxcover_grid::{io::parse_ascii, DiscRobot};
+//! use oxcover_planners::{find, CoverageProblem, Start};
 //!
 //! let (map, start) = parse_ascii("S..\n...").unwrap();
-//! let free = map.free_mask();
-//! let coarse = CoarseGrid::new(&free, 1);
-//! let input = PlannerInput::new(&free, &coarse, start.unwrap());
-//! let plan = find("grid-cover").unwrap().plan(&input).unwrap();
-//! let fine = expand(&input, &plan).unwrap();
+//! let robot = DiscRobot::cell_sized(map.resolution());
+//! let problem = CoverageProblem::new(&map, robot, Start::Cell(start.unwrap())).unwrap();
+//! let plan = find("grid-cover").unwrap().plan(&problem.input(0)).unwrap();
+//! let fine = problem.expand(&plan).unwrap();
 //! assert_eq!(fine.len(), 6); // a Hamiltonian path: 5 moves
 //! ```
 
@@ -55,8 +57,10 @@ pub mod grid_cover;
 mod metre_path;
 pub mod optimal;
 pub mod planner;
+pub mod problem;
 pub mod pso;
 pub mod rect_priority;
+pub mod registry;
 mod route;
 pub mod sensor_bcd;
 pub mod smooth;
@@ -67,4 +71,8 @@ mod testing;
 
 pub use boundary_pass::{BoundaryRoute, boundary_pass};
 pub use error::{Error, Result};
-pub use planner::{PlanOutput, Planner, PlannerInput, expand, find, registry, steps};
+pub use planner::{Planner, PlannerOptions, steps};
+pub use problem::{
+    CoverageProblem, PlanOutput, PlannerInput, Start, coarse_block, largest_region_start,
+};
+pub use registry::{build, find, registry};

@@ -163,14 +163,11 @@ impl<'a> PathBuilder<'a> {
         }
     }
 
-    /// Visits every coverage cell whose representative is not within half a
-    /// coverage cell of the path, nearest first.
-    ///
-    /// The reach is half a coverage cell, or the tool radius when that is
-    /// smaller (a tool narrower than one map cell covers only the cells whose
-    /// centres the path passes close to).
-    pub(crate) fn cover_leftovers(&mut self, coarse: &CoarseGrid, tool_cells: f64) -> Result<()> {
-        let radius = (coarse.block_size() as f64 / 2.0).min(tool_cells) + 1e-9;
+    /// Visits every coverage cell whose representative is not within `reach`
+    /// cells of the path, nearest first ([`crate::PlannerInput::visit_radius`]:
+    /// half a coverage cell, or the tool radius when that is smaller).
+    pub(crate) fn cover_leftovers(&mut self, coarse: &CoarseGrid, reach: f64) -> Result<()> {
+        let radius = reach + 1e-9;
         let mut wanted = Grid::new(self.plannable.width(), self.plannable.height(), false);
         for rep in coarse.representatives().as_slice().iter().flatten() {
             wanted[*rep] = true;

@@ -40,7 +40,8 @@ use oxcover_grid::{Cell, CoarseGrid, Dir4, Grid};
 use crate::error::{Error, Result};
 use crate::full_dtc::full_dtc;
 use crate::grid_cover::grid_cover;
-use crate::planner::{PlanOutput, Planner, PlannerInput, steps};
+use crate::planner::{Planner, steps};
+use crate::problem::{PlanOutput, PlannerInput};
 
 /// A multiply-xorshift hasher for the packed `u128` states (SipHash's
 /// DoS resistance buys nothing here and costs half the DP's time).
@@ -319,16 +320,7 @@ pub fn optimal(coarse: &CoarseGrid, start: Cell, params: &Optimal) -> Result<Opt
     // DTC goal (full DTC is cheap at the sizes this DP handles).
     let mut best = grid_cover(coarse, start)?;
     if n <= 4096 {
-        let passable = coarse.passable();
-        let input = PlannerInput {
-            plannable: &passable,
-            coarse,
-            start,
-            seed: 0,
-            frame: oxcover_grid::MapFrame::unit(passable.width(), passable.height()),
-            tool_cells: 0.5,
-        };
-        if let Ok(fd) = full_dtc(&input) {
+        if let Ok(fd) = full_dtc(coarse, start) {
             if steps(&fd.shortest) < steps(&best) {
                 best = fd.shortest;
             }
@@ -725,14 +717,10 @@ fn euler_walk(layout: &Layout, right: &[u8], down: &[u8], s: usize) -> Vec<Cell>
 mod tests {
     use super::*;
     use oxcover_grid::io::parse_ascii;
-    use oxcover_grid::{Coverability, DiscRobot};
 
     fn solve(text: &str) -> OptimalResult {
-        let (map, s) = parse_ascii(text).unwrap();
-        let p =
-            Coverability::with_start_cell(&map, DiscRobot::cell_sized(1.0), s.unwrap()).unwrap();
-        let coarse = CoarseGrid::new(&p.reachable, 1);
-        optimal(&coarse, p.start, &Optimal::new()).unwrap()
+        let p = crate::testing::problem(text, 1);
+        optimal(p.coarse(), p.input(0).start, &Optimal::new()).unwrap()
     }
 
     fn is_walk(r: &OptimalResult) -> bool {

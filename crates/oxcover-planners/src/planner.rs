@@ -1,81 +1,21 @@
-//! The `Planner` abstraction shared by every planner, and the registry.
+//! The `Planner` abstraction shared by every planner.
 //!
-//! A planner receives the coverage problem as a [`PlannerInput`]: the fine
+//! A planner receives the coverage problem as a [`PlannerInput`] (made by
+//! [`crate::CoverageProblem::input`]): the fine
 //! plannable cells (admissible and reachable), the coverage grid over them
 //! (one tool diameter per coverage cell; with the default radii, the fine grid
 //! itself), the start coverage cell and a seed. It returns a path over
 //! coverage cells, each step a connected move of the coverage grid (four
-//! neighbours, or a diagonal where [`CoarseGrid::connect`] finds a path), a
+//! neighbours, or a diagonal where [`oxcover_grid::CoarseGrid::connect`] finds a path), a
 //! fine cell path, or a metre path (for planners that leave the grid, e.g.
-//! smoothed paths; the caller checks such paths point by point). [`expand`]
+//! smoothed paths; the caller checks such paths point by point). [`PlannerInput::expand`]
 //! turns coverage paths into fine ones, so grid planners end as 4-connected
 //! paths of plannable fine cells: no straight lines through walls.
 
-use oxcover_grid::{Cell, CoarseGrid, Grid, MapFrame};
+use oxcover_grid::Cell;
 
-use crate::error::{Error, Result};
-
-/// The coverage problem as a planner sees it.
-#[derive(Clone, Copy, Debug)]
-pub struct PlannerInput<'a> {
-    /// Fine cells the robot may occupy (admissible and reachable from the start).
-    pub plannable: &'a Grid<bool>,
-    /// The coverage grid built from `plannable`.
-    pub coarse: &'a CoarseGrid,
-    /// The start coverage cell (it has a representative).
-    pub start: Cell,
-    /// Seed for randomised planners.
-    pub seed: u64,
-    /// Where the grid lies in metres (for planners returning metre paths).
-    pub frame: MapFrame,
-    /// Tool radius in fine cells: a fine cell counts as covered when its
-    /// centre passes within it (the contract). At least half a coverage cell
-    /// in practice; smaller when the tool is narrower than one map cell.
-    pub tool_cells: f64,
-}
-
-impl<'a> PlannerInput<'a> {
-    /// An input starting at the coverage cell containing the fine `start`.
-    #[must_use]
-    pub fn new(plannable: &'a Grid<bool>, coarse: &'a CoarseGrid, fine_start: Cell) -> Self {
-        Self {
-            plannable,
-            coarse,
-            start: coarse.coarse_of(fine_start),
-            seed: 0,
-            frame: MapFrame::unit(plannable.width(), plannable.height()),
-            tool_cells: coarse.block_size() as f64 / 2.0,
-        }
-    }
-
-    /// Coverage cells (those with a representative).
-    #[must_use]
-    pub fn coverage_cells(&self) -> usize {
-        self.coarse.representatives().count(Option::is_some)
-    }
-}
-
-/// What a planner returns.
-#[derive(Clone, Debug, PartialEq)]
-pub enum PlanOutput {
-    /// Coverage cells from the start; consecutive cells are connected neighbours.
-    Coverage(Vec<Cell>),
-    /// Fine cells from the start's representative; consecutive cells are 4-neighbours.
-    Fine(Vec<Cell>),
-    /// Waypoints in metres (map frame), from the start's representative's centre.
-    Metres(Vec<oxcover_grid::Point>),
-}
-
-impl PlanOutput {
-    /// The coverage-cell path, if that is what was returned.
-    #[must_use]
-    pub fn coverage(&self) -> Option<&[Cell]> {
-        match self {
-            PlanOutput::Coverage(v) => Some(v),
-            PlanOutput::Fine(_) | PlanOutput::Metres(_) => None,
-        }
-    }
-}
+use crate::error::Result;
+use crate::problem::{PlanOutput, PlannerInput};
 
 /// A coverage planner.
 pub trait Planner: Send + Sync {
@@ -88,104 +28,40 @@ pub trait Planner: Send + Sync {
     /// Plans a path.
     ///
     /// # Errors
-    /// [`Error::TooLarge`] when the problem exceeds the planner's limits;
-    /// [`Error::Internal`] for broken guarantees.
+    /// [`crate::Error::TooLarge`] when the problem exceeds the planner's limits;
+    /// [`crate::Error::Internal`] for broken guarantees.
     fn plan(&self, input: &PlannerInput<'_>) -> Result<PlanOutput>;
-}
-
-/// Every planner, in the order `oxcover planners` lists them.
-#[must_use]
-pub fn registry() -> &'static [&'static dyn Planner] {
-    use crate::{
-        border_expansion::BorderExpansionPlanner,
-        bsa::Bsa,
-        dtc::Dtc,
-        full_dtc::FullDtc,
-        grid_cover::GridCover,
-        optimal::Optimal,
-        rect_priority::RectPriority,
-        smooth::Smooth,
-        stc::{Stc, StcVariant},
-        sweep::{Decomposition, Sweep},
-    };
-    static DTC: Dtc = Dtc::new();
-    static FULL_DTC: FullDtc = FullDtc::new();
-    static GRID_COVER: GridCover = GridCover::new();
-    static RECT: RectPriority = RectPriority::new();
-    static OPTIMAL: Optimal = Optimal::new();
-    static STC: Stc = Stc::new(StcVariant::Plain);
-    static SPIRAL_STC: Stc = Stc::new(StcVariant::Full);
-    static BSA: Bsa = Bsa;
-    static BOUSTROPHEDON: Sweep = Sweep::new(Decomposition::Boustrophedon);
-    static TRAPEZOIDAL: Sweep = Sweep::new(Decomposition::Trapezoidal);
-    static BORDER: BorderExpansionPlanner = BorderExpansionPlanner;
-    static SMOOTH: Smooth = Smooth::new();
-    static ALL: [&dyn Planner; 12] = [
-        &DTC,
-        &FULL_DTC,
-        &GRID_COVER,
-        &RECT,
-        &OPTIMAL,
-        &STC,
-        &SPIRAL_STC,
-        &BSA,
-        &BOUSTROPHEDON,
-        &TRAPEZOIDAL,
-        &BORDER,
-        &SMOOTH,
-    ];
-    &ALL
-}
-
-/// The registered planner with this name.
-///
-/// # Errors
-/// [`Error::UnknownPlanner`].
-pub fn find(name: &str) -> Result<&'static dyn Planner> {
-    registry()
-        .iter()
-        .copied()
-        .find(|p| p.name() == name)
-        .ok_or_else(|| Error::UnknownPlanner(name.to_string()))
-}
-
-/// The fine path of a plan: coverage steps become the fine paths
-/// [`CoarseGrid::connect`] gives; the result starts at the start's representative.
-///
-/// # Errors
-/// [`Error::Internal`] if two consecutive coverage cells are not connected, or
-/// for a metre path (it has no cell path; use it as it is).
-pub fn expand(input: &PlannerInput<'_>, output: &PlanOutput) -> Result<Vec<Cell>> {
-    let path = match output {
-        PlanOutput::Fine(v) => return Ok(v.clone()),
-        PlanOutput::Metres(_) => {
-            return Err(Error::Internal(
-                "a metre path has no cell path to expand".into(),
-            ));
-        }
-        PlanOutput::Coverage(v) => v,
-    };
-    let Some(&first) = path.first() else {
-        return Ok(Vec::new());
-    };
-    let rep = input
-        .coarse
-        .representative(first)
-        .ok_or_else(|| Error::Internal(format!("coverage cell {first:?} has no representative")))?;
-    let mut fine = vec![rep];
-    for w in path.windows(2) {
-        let seg = input
-            .coarse
-            .connect(input.plannable, w[0], w[1])
-            .ok_or_else(|| {
-                Error::Internal(format!(
-                    "coverage step {:?} -> {:?} is not connected",
-                    w[0], w[1]
-                ))
-            })?;
-        fine.extend_from_slice(&seg[1..]);
+    /// The user-settable options this value carries (for reports); none by default.
+    fn options(&self) -> PlannerOptions {
+        PlannerOptions::new()
     }
-    Ok(fine)
+}
+
+/// Options a user may set on a planner (the CLI's planner flags). Each is
+/// `None` unless given; [`crate::build`] refuses options a planner does not take.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[non_exhaustive]
+pub struct PlannerOptions {
+    /// Fixed sweep angle in degrees (map frame, lanes along it), for the
+    /// planners that sweep; `None` = their own choice.
+    pub sweep_angle_deg: Option<f64>,
+}
+
+impl PlannerOptions {
+    /// No option set.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self {
+            sweep_angle_deg: None,
+        }
+    }
+
+    /// The same options with a fixed sweep angle (degrees).
+    #[must_use]
+    pub const fn sweep_angle(mut self, deg: f64) -> Self {
+        self.sweep_angle_deg = Some(deg);
+        self
+    }
 }
 
 /// Steps (moves) of a coverage path.

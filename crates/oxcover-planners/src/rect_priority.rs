@@ -30,7 +30,8 @@ use oxcover_distance::{Wavefront, cidt};
 use oxcover_grid::{Cell, Dir8, Grid};
 
 use crate::error::{Error, Result};
-use crate::planner::{PlanOutput, Planner, PlannerInput};
+use crate::planner::Planner;
+use crate::problem::{PlanOutput, PlannerInput};
 
 /// Fig. 7: the user priority `L` of each direction (F = south = 1 highest).
 pub const PRIORITY: [(Dir8, f64); 8] = [

@@ -80,7 +80,8 @@ use oxcover_robot::{ArchimedeanSpiral, QuinticBezier};
 
 use crate::error::{Error, Result};
 use crate::metre_path::{Clearance, PathBuilder, for_each_contract_sample};
-use crate::planner::{PlanOutput, Planner, PlannerInput};
+use crate::planner::Planner;
+use crate::problem::{PlanOutput, PlannerInput};
 use crate::pso::Pso;
 
 /// Least distance (cells) the path keeps from non-plannable cells. A path
@@ -910,22 +911,17 @@ fn norm(x: f64, y: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use oxcover_grid::io::{ascii_mask, parse_ascii};
+    use oxcover_grid::io::ascii_mask;
     use oxcover_grid::traverse::segment_clear;
-    use oxcover_grid::{CoarseGrid, Coverability, DiscRobot};
 
     /// The plan on an ASCII map with `block`-cell coverage cells, its path in
     /// grid coordinates, and the plannable mask.
     fn plan(text: &str, block: usize) -> (SmoothPlan, Vec<GridPoint>, Grid<bool>) {
-        let (map, start) = parse_ascii(text).unwrap();
-        let p = Coverability::with_start_cell(&map, DiscRobot::cell_sized(1.0), start.unwrap())
-            .unwrap();
-        let coarse = CoarseGrid::new(&p.reachable, block);
-        let input = PlannerInput::new(&p.reachable, &coarse, p.start);
-        let plan = Smooth::new().plan_detailed(&input).unwrap();
-        let h = p.reachable.height() as f64;
+        let p = crate::testing::problem(text, block);
+        let plan = Smooth::new().plan_detailed(&p.input(0)).unwrap();
+        let h = p.plannable().height() as f64;
         let pts = plan.points.iter().map(|q| (q.x, h - q.y)).collect();
-        (plan, pts, p.reachable)
+        (plan, pts, p.plannable().clone())
     }
 
     #[test]

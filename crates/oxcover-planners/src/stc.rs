@@ -36,7 +36,8 @@
 use oxcover_grid::{Cell, CoarseGrid, Dir4, Grid};
 
 use crate::error::{Error, Result};
-use crate::planner::{PlanOutput, Planner, PlannerInput};
+use crate::planner::Planner;
+use crate::problem::{PlanOutput, PlannerInput};
 use crate::route::CoarseRouter;
 
 /// Which STC.

@@ -27,7 +27,8 @@ use oxcover_grid::traverse::GridPoint;
 
 use crate::error::{Error, Result};
 use crate::metre_path::PathBuilder;
-use crate::planner::{PlanOutput, Planner, PlannerInput};
+use crate::planner::{Planner, PlannerOptions};
+use crate::problem::{PlanOutput, PlannerInput};
 
 /// Candidate sweep angles (degrees, map frame) when none is fixed.
 pub const ANGLES_DEG: [f64; 12] = [
@@ -131,7 +132,7 @@ impl Sweep {
         for &cell in &order {
             sweep_cell(&mut path, &decomposition, cell)?;
         }
-        path.cover_leftovers(input.coarse, input.tool_cells)?;
+        path.cover_leftovers(input.coarse, input.visit_radius())?;
         let points = path.into_metres(&input.frame);
         Ok(SweepPlan {
             angle_deg: angle,
@@ -177,6 +178,11 @@ impl Planner for Sweep {
     }
     fn plan(&self, input: &PlannerInput<'_>) -> Result<PlanOutput> {
         Ok(PlanOutput::Metres(self.plan_detailed(input)?.points))
+    }
+    fn options(&self) -> PlannerOptions {
+        PlannerOptions {
+            sweep_angle_deg: self.angle_deg,
+        }
     }
 }
 
@@ -449,17 +455,16 @@ fn two_opt(order: &mut [usize], at: &impl Fn(usize, usize) -> f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use oxcover_grid::io::parse_ascii;
+
+    use oxcover_grid::Grid;
     use oxcover_grid::traverse::segment_clear;
-    use oxcover_grid::{CoarseGrid, Coverability, DiscRobot, Grid};
 
     fn plan(text: &str, sweep: Sweep, block: usize) -> (SweepPlan, Grid<bool>) {
-        let (map, start) = parse_ascii(text).unwrap();
-        let p = Coverability::with_start_cell(&map, DiscRobot::cell_sized(1.0), start.unwrap())
-            .unwrap();
-        let coarse = CoarseGrid::new(&p.reachable, block);
-        let input = PlannerInput::new(&p.reachable, &coarse, p.start);
-        (sweep.plan_detailed(&input).unwrap(), p.reachable)
+        let p = crate::testing::problem(text, block);
+        (
+            sweep.plan_detailed(&p.input(0)).unwrap(),
+            p.plannable().clone(),
+        )
     }
 
     fn grid_points(map: &Grid<bool>, points: &[oxcover_grid::Point]) -> Vec<GridPoint> {

@@ -1,9 +1,22 @@
 //! Test helpers: plan on ASCII maps (`S` marks the start).
 
 use oxcover_grid::io::parse_ascii;
-use oxcover_grid::{Cell, CoarseGrid, Coverability, DiscRobot};
+use oxcover_grid::{Cell, DiscRobot};
 
-use crate::planner::{Planner, PlannerInput, expand};
+use crate::planner::Planner;
+use crate::problem::{CoverageProblem, Start};
+
+/// The problem of an ASCII map (1 m cells, start at its `S`) for a point
+/// robot whose tool is `block` cells wide, so coverage cells are `block`
+/// fine cells on a side.
+pub(crate) fn problem(text: &str, block: usize) -> CoverageProblem {
+    let (map, start) = parse_ascii(text).expect("valid ASCII map");
+    let start = start.expect("an S in the map");
+    let robot = DiscRobot::new(0.0, block as f64 / 2.0).expect("valid tool");
+    let p = CoverageProblem::new(&map, robot, Start::Cell(start)).expect("S is admissible");
+    assert_eq!(p.block(), block);
+    p
+}
 
 /// The coverage path of `planner` on an ASCII map with unit coverage cells.
 pub(crate) fn plan_ascii(planner: &dyn Planner, text: &str) -> Vec<Cell> {
@@ -16,14 +29,9 @@ pub(crate) fn plan_cells(
     text: &str,
     block: usize,
 ) -> (Vec<Cell>, Vec<Cell>) {
-    let (map, start) = parse_ascii(text).expect("valid ASCII map");
-    let start = start.expect("an S in the map");
-    let p = Coverability::with_start_cell(&map, DiscRobot::cell_sized(1.0), start)
-        .expect("S is admissible");
-    let coarse = CoarseGrid::new(&p.reachable, block);
-    let input = PlannerInput::new(&p.reachable, &coarse, start);
-    let out = planner.plan(&input).expect("planner succeeds");
-    let fine = expand(&input, &out).expect("connected plan");
+    let p = problem(text, block);
+    let out = planner.plan(&p.input(0)).expect("planner succeeds");
+    let fine = p.expand(&out).expect("connected plan");
     (
         out.coverage().map(<[Cell]>::to_vec).unwrap_or_default(),
         fine,

@@ -6,9 +6,9 @@
 use oxcover_grid::Point;
 use oxcover_grid::random::{random_density, uniform_connected};
 use oxcover_grid::traverse::{cell_center, segment_clear, segment_distance};
-use oxcover_grid::{CoarseGrid, Coverability, DiscRobot, Grid, OccupancyGrid};
+use oxcover_grid::{CoarseGrid, DiscRobot, Grid, OccupancyGrid};
 use oxcover_planners::optimal::{Optimal, lower_bound, optimal};
-use oxcover_planners::{PlanOutput, PlannerInput, expand, registry};
+use oxcover_planners::{CoverageProblem, PlanOutput, PlannerInput, Start, registry};
 
 /// A metre plan (unit frame): starts at the start's representative, every
 /// segment crosses plannable cells only, and (if complete) passes within half
@@ -48,8 +48,11 @@ fn check_metres(input: &PlannerInput<'_>, points: &[Point], complete: bool) -> R
 
 use proptest::prelude::*;
 
-fn problem(map: &OccupancyGrid) -> Option<Coverability> {
-    Coverability::new(map, DiscRobot::cell_sized(1.0), None).ok()
+/// The problem of `map` (1 m cells, the contract's default start) for a
+/// point robot whose tool is `block` cells wide.
+fn problem(map: &OccupancyGrid, block: usize, start: Start) -> Option<CoverageProblem> {
+    let robot = DiscRobot::new(0.0, block as f64 / 2.0).ok()?;
+    CoverageProblem::new(map, robot, start).ok()
 }
 
 proptest! {
@@ -58,9 +61,9 @@ proptest! {
     #[test]
     fn plans_are_admissible_and_complete(w in 3usize..14, h in 3usize..14, density in 0.0f64..0.35, seed in any::<u64>(), block in 1usize..4) {
         let map = random_density(w, h, density, seed);
-        let Some(p) = problem(&map) else { return Ok(()); };
-        let coarse = CoarseGrid::new(&p.reachable, block);
-        let input = PlannerInput::new(&p.reachable, &coarse, p.start);
+        let Some(p) = problem(&map, block, Start::First) else { return Ok(()); };
+        let input = p.input(0);
+        let coarse = p.coarse();
         for planner in registry() {
             // The exact search is exponential in the grid's width; keep it to
             // widths where it is quick (the optimality checks are below).
@@ -77,9 +80,9 @@ proptest! {
                     .map_err(|e| TestCaseError::fail(format!("{}: {e}", planner.name())))?;
                 continue;
             }
-            let fine = expand(&input, &out).unwrap();
+            let fine = p.expand(&out).unwrap();
             prop_assert_eq!(fine.first().copied(), coarse.representative(input.start), "{}", planner.name());
-            prop_assert!(fine.iter().all(|&c| p.reachable[c]), "{} leaves the plannable cells", planner.name());
+            prop_assert!(fine.iter().all(|&c| p.plannable()[c]), "{} leaves the plannable cells", planner.name());
             prop_assert!(fine.windows(2).all(|s| s[0].manhattan(s[1]) == 1), "{} is not 4-connected", planner.name());
             if planner.complete() {
                 let mut seen = Grid::new(coarse.width(), coarse.height(), false);
@@ -103,21 +106,22 @@ proptest! {
         let free = map.free_mask();
         let cells: Vec<_> = free.true_cells().collect();
         let start = cells[start_pick as usize % cells.len()];
+        let p = problem(&map, 1, Start::Cell(start)).unwrap();
+        let input = p.input(0);
         let coarse = CoarseGrid::new(&free, 1);
-        let input = PlannerInput::new(&free, &coarse, start);
         let best = optimal(&coarse, start, &Optimal::new()).unwrap();
         prop_assert!(best.proven);
         prop_assert!(best.steps >= lower_bound(&coarse, start));
         prop_assert!(best.steps >= cells.len() - 1);
         // Incomplete planners (plain STC) may stop short of the optimum.
-        for planner in registry().iter().filter(|p| p.complete()) {
+        for planner in registry().filter(|p| p.complete()) {
             let out = planner.plan(&input).unwrap();
             if let PlanOutput::Metres(points) = &out {
                 // A metre path has no move count to compare with the optimum.
                 let _ = points;
                 continue;
             }
-            let fine = expand(&input, &out).unwrap();
+            let fine = p.expand(&out).unwrap();
             prop_assert!(best.steps < fine.len(), "{} beat the optimum: {} < {}", planner.name(), fine.len() - 1, best.steps);
         }
     }

@@ -4,8 +4,9 @@
 //! exact laps and graphs on hand-drawn rooms, bad input, determinism.
 
 use oxcover_grid::footprint::covered_cells;
-use oxcover_grid::{Coverability, DiscRobot, Point};
+use oxcover_grid::{DiscRobot, Point};
 use oxcover_planners::sensor_bcd::{Config, Exploration, State, explore};
+use oxcover_planners::{CoverageProblem, Start};
 use oxcover_robot::{
     Convexity, Event, Outline, RandomWorldSpec, World, WorldGeometry, random_world,
 };
@@ -15,11 +16,11 @@ fn coverage(world: &World, ex: &Exploration, cfg: &Config) -> f64 {
     let map = world.rasterise();
     let start = ex.trace[0];
     let robot = DiscRobot::new(cfg.robot_radius, cfg.tool_radius).expect("valid radii");
-    let problem =
-        Coverability::new(&map, robot, Some(Point::new(start.x, start.y))).expect("a problem");
+    let problem = CoverageProblem::new(&map, robot, Start::At(Point::new(start.x, start.y)))
+        .expect("a problem");
     let pts: Vec<Point> = ex.trace.iter().map(|t| Point::new(t.x, t.y)).collect();
     let covered = covered_cells(map.frame(), &pts, cfg.tool_radius);
-    let coverable = &problem.coverable;
+    let coverable = &problem.cells().coverable;
     let hit = coverable
         .cells()
         .filter(|&c| coverable[c] && covered[c])

@@ -211,7 +211,7 @@ pub fn to_csv(samples: &[Executed]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::planner::{PlanRequest, plan};
+    use crate::pipeline::{PlanRequest, plan};
     use oxcover_grid::io::parse_ascii;
 
     fn spec() -> RobotSpec {
@@ -236,7 +236,7 @@ mod tests {
         let (unit, _) = parse_ascii(text).unwrap();
         let map = OccupancyGrid::new(unit.cells().clone(), 0.5, Point::origin());
         let robot = DiscRobot::cell_sized(0.5);
-        let out = plan(&map, &PlanRequest::new("boustrophedon", 0.5)).unwrap();
+        let out = plan(&map, &PlanRequest::new("boustrophedon", 0.5).unwrap()).unwrap();
         (map, robot, out.points)
     }
 

@@ -20,7 +20,7 @@ pub enum Error {
     Vision(#[from] oxcover_vision::Error),
     /// A planner refused the problem or failed.
     #[error(transparent)]
-    Planner(#[from] oxcover_planners::Error),
+    Planner(oxcover_planners::Error),
     /// A path file is malformed.
     #[error("{}: line {line}: {message}", path.display())]
     PathFile {
@@ -76,10 +76,22 @@ impl Error {
         }
     }
 
-    pub(crate) fn write(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+    /// A file could not be written.
+    pub fn write(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
         Error::Write {
             path: path.into(),
             source,
+        }
+    }
+}
+
+impl From<oxcover_planners::Error> for Error {
+    /// A map, robot or start the planners' problem refused is a map error,
+    /// reported as the grid crate words it.
+    fn from(e: oxcover_planners::Error) -> Self {
+        match e {
+            oxcover_planners::Error::Map(m) => Error::Map(m),
+            other => Error::Planner(other),
         }
     }
 }

@@ -6,8 +6,9 @@
 //! pipeline, scores paths with the contract's metrics, draws them, and provides
 //! the `oxcover` command line.
 //!
-//! - [`planner`]: the pipeline (coverage problem → coverage grid → planner →
-//!   fine path → boundary pass → metre path) and the planner listing.
+//! - [`pipeline`]: the one plan pipeline (problem → plan → evaluate →
+//!   outputs) behind the command line, the demo, every experiment and bench;
+//!   the planner listing.
 //! - [`closed_loop`]: a plan executed by a simulated differential-drive robot
 //!   (time law, tracking controller, wheel limits, odometry noise, energy),
 //!   scored on the executed trajectory.
@@ -20,33 +21,56 @@
 //! - [`render`]: SVG and PNG pictures with a metrics legend, and overlays
 //!   (coloured strokes, lines, markers) for states and graphs.
 //! - [`report`]: the JSON report of `plan --report`.
-//! - [`cli`], [`demo`]: the command line (including `map-from-camera`, on
-//!   `oxcover_vision`) and its no-argument demo.
+//!
+//! The command line (`oxcover`, including `map-from-camera` on
+//! [`oxcover_vision`]) is the binary's own and uses only this API.
+//!
+//! Everything a user needs comes from this crate: the member crates are
+//! re-exported ([`grid`], [`planners`], [`distance`], [`decomp`], [`robot`],
+//! [`vision`]) and the common names are at the root.
 //!
 //! ```
-//! use oxcover::planner::{plan, PlanRequest};
-//! use oxcover_grid::io::parse_ascii;
+//! use oxcover::{parse_ascii, plan, PlanRequest};
 //!
 //! let (map, _) = parse_ascii("
 //!     ......
 //!     .##...
 //!     ......
 //! ").unwrap();
-//! let outcome = plan(&map, &PlanRequest::new("dtc", map.resolution())).unwrap();
+//! let request = PlanRequest::new("boustrophedon", map.resolution()).unwrap();
+//! let outcome = plan(&map, &request).unwrap();
 //! let m = &outcome.evaluation.metrics;
 //! assert_eq!((m.coverage, m.collisions), (1.0, 0));
 //! println!("{}", oxcover::path::to_csv(&outcome.points));
 //! ```
 
-pub mod cli;
 pub mod closed_loop;
-pub mod demo;
 pub mod error;
 pub mod explore;
 pub mod metrics;
 pub mod path;
-pub mod planner;
+pub mod pipeline;
 pub mod render;
 pub mod report;
 
 pub use error::{Error, Result};
+pub use metrics::{Evaluation, MetricParams, Metrics, evaluate};
+pub use oxcover_grid::io::{ReadOptions, parse_ascii, read_map};
+pub use oxcover_grid::{DiscRobot, OccupancyGrid, Point};
+pub use oxcover_planners::{CoverageProblem, Planner, PlannerOptions, Start};
+pub use path::{read_csv, write_csv};
+pub use pipeline::{Outputs, PlanOutcome, PlanRequest, plan, planner, write_outputs};
+pub use render::{Scene, render_to_file};
+
+/// Decompositions ([`oxcover_decomp`]).
+pub use oxcover_decomp as decomp;
+/// Distance transforms ([`oxcover_distance`]).
+pub use oxcover_distance as distance;
+/// The grid and occupancy model ([`oxcover_grid`]).
+pub use oxcover_grid as grid;
+/// Planners, the registry and the coverage problem ([`oxcover_planners`]).
+pub use oxcover_planners as planners;
+/// Robot kinematics, control and polygonal worlds ([`oxcover_robot`]).
+pub use oxcover_robot as robot;
+/// Camera occupancy mapping ([`oxcover_vision`]).
+pub use oxcover_vision as vision;

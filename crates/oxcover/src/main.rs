@@ -1,5 +1,8 @@
-//! The `oxcover` command line; see `oxcover --help` and the contract.
+//! The `oxcover` command line; see `oxcover --help` and the contract. The
+//! commands live in [`cli`], each a thin layer over the `oxcover` library.
+
+mod cli;
 
 fn main() -> std::process::ExitCode {
-    oxcover::cli::main()
+    cli::main()
 }

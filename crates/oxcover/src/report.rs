@@ -2,12 +2,12 @@
 //!
 //! The report is the metrics object of `eval` plus the planner's name, its
 //! parameters, `plan_ms`, and the coverage before the boundary pass (so paper
-//! reproductions can show the raw planner).
+//! reproductions can show the raw planner); `PlanOutcome::report` in
+//! [`crate::pipeline`] fills it.
 
 use serde::Serialize;
 
 use crate::metrics::Metrics;
-use crate::planner::PlanOutcome;
 
 /// Parameters a plan was made with.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -62,25 +62,6 @@ pub struct PlanReport {
     pub metrics: Metrics,
 }
 
-impl PlanReport {
-    /// Builds the report of a plan.
-    #[must_use]
-    pub fn new(planner: &str, parameters: PlanParameters, outcome: &PlanOutcome) -> Self {
-        Self {
-            planner: planner.to_string(),
-            parameters,
-            plan_ms: outcome.plan_ms,
-            coverage_without_boundary_pass: outcome.coverage_without_boundary_pass,
-            boundary: outcome.boundary.as_ref().map(|b| BoundaryStats {
-                pending_cells: b.pending,
-                anchors: b.anchors,
-                appended_cells: b.cells.len(),
-            }),
-            metrics: outcome.evaluation.metrics.clone(),
-        }
-    }
-}
-
 /// `(key, value)` rows for tables and legends.
 #[must_use]
 pub fn metric_rows(m: &Metrics) -> Vec<(String, String)> {
@@ -102,21 +83,6 @@ pub fn metric_rows(m: &Metrics) -> Vec<(String, String)> {
         "covered".to_string(),
         format!("{}/{}", m.covered_cells, m.coverable_cells),
     ));
-    rows
-}
-
-/// The rows of a plan: its metrics with the coverage before the boundary pass
-/// second.
-#[must_use]
-pub fn plan_rows(outcome: &PlanOutcome) -> Vec<(String, String)> {
-    let mut rows = metric_rows(&outcome.evaluation.metrics);
-    rows.insert(
-        1,
-        (
-            "coverage (no boundary pass)".into(),
-            format!("{:.4}", outcome.coverage_without_boundary_pass),
-        ),
-    );
     rows
 }
 

@@ -185,8 +185,14 @@ fn info_planners_and_demo() {
     );
     let (planners, _) = run(&["planners"]);
     assert!(planners.contains("dtc"));
-    let dir = scratch("demo");
-    oxcover::demo::run_into(&dir).unwrap();
+    // No command: the demo, written into ./oxcover-demo/.
+    let cwd = scratch("demo");
+    let out = Command::new(bin())
+        .current_dir(&cwd)
+        .output()
+        .expect("run oxcover");
+    assert!(out.status.success(), "{out:?}");
+    let dir = cwd.join("oxcover-demo");
     for ext in ["csv", "svg", "png", "json"] {
         assert!(
             dir.join(format!("simple_rooms_dtc.{ext}")).exists(),

@@ -12,10 +12,10 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use oxcover::planner::{PlanRequest, plan};
-use oxcover_grid::io::{ReadOptions, read_map};
-use oxcover_grid::{DiscRobot, OccupancyGrid};
-use oxcover_planners::registry;
+use oxcover::grid::io::{ReadOptions, read_map};
+use oxcover::grid::{DiscRobot, OccupancyGrid};
+use oxcover::pipeline::{PlanRequest, plan};
+use oxcover::planners::registry;
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
@@ -43,9 +43,9 @@ fn cases() -> Vec<(&'static str, Option<(f64, f64)>)> {
 }
 
 fn row(name: &str, map: &OccupancyGrid, radii: Option<(f64, f64)>, planner: &str) -> String {
-    let mut req = PlanRequest::new(planner, map.resolution());
+    let mut req = PlanRequest::new(planner, map.resolution()).expect("registered");
     if let Some((r, t)) = radii {
-        req.robot = DiscRobot::new(r, t).expect("valid radii");
+        req = req.robot(DiscRobot::new(r, t).expect("valid radii"));
     }
     let radii = radii.map_or_else(|| "default".to_string(), |(r, t)| format!("{r}/{t}"));
     let what = match plan(map, &req) {

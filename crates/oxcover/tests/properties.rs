@@ -5,7 +5,7 @@
 //! runs them in release.
 
 use oxcover::metrics::{MetricParams, evaluate};
-use oxcover::planner::{PlanRequest, plan, planners};
+use oxcover::pipeline::{PlanRequest, plan, planners};
 use oxcover_grid::random::{blobs, random_density, rectangles};
 use oxcover_grid::{DiscRobot, OccupancyGrid, Point};
 use proptest::prelude::*;
@@ -27,9 +27,10 @@ fn check(
     name: &str,
     complete: bool,
 ) -> Result<(), TestCaseError> {
-    let mut req = PlanRequest::new(name, map.resolution());
-    req.robot = robot;
-    req.boundary_pass = false;
+    let mut req = PlanRequest::new(name, map.resolution())
+        .map_err(|e| TestCaseError::fail(e.to_string()))?
+        .robot(robot)
+        .boundary_pass(false);
     let out = match plan(map, &req) {
         Ok(o) => o,
         Err(oxcover::Error::Map(

@@ -17,7 +17,8 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use oxcover::explore::{ExploreOutcome, explore_world, found_within};
-use oxcover::planner::{PlanRequest, plan};
+use oxcover::pipeline::{PlanRequest, plan, planner};
+use oxcover::planners::{PlannerOptions, Start};
 use oxcover::render::{Scene, render_to_file};
 use oxcover::report::metric_rows;
 use oxcover_grid::{DiscRobot, Point};
@@ -82,10 +83,10 @@ pub fn measure() -> anyhow::Result<Vec<Measured>> {
             let clean = explore_world(&world, &config(0.0, 0), None)?;
             let noisy = explore_world(&world, &config(NOISE, k as u64 + 1), None)?;
             let cfg = Config::default();
-            let mut req = PlanRequest::new("boustrophedon", world.resolution);
-            req.robot = DiscRobot::new(cfg.robot_radius, cfg.tool_radius)?;
-            req.start = world.start.map(|s| Point::new(s.0, s.1));
-            req.sweep_angle_deg = Some(90.0);
+            let sweep = planner("boustrophedon", &PlannerOptions::new().sweep_angle(90.0))?;
+            let req = PlanRequest::with_planner(sweep, world.resolution)
+                .robot(DiscRobot::new(cfg.robot_radius, cfg.tool_radius)?)
+                .start(Start::from(world.start.map(|s| Point::new(s.0, s.1))));
             let off = plan(&clean.map, &req)?;
             let offline = (
                 off.evaluation.metrics.coverage,

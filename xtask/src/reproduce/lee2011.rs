@@ -20,12 +20,13 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use oxcover::closed_loop::{ClosedLoop, ControllerKind, Run, execute};
-use oxcover::planner::{PlanRequest, plan};
+use oxcover::pipeline::{PlanRequest, plan};
+use oxcover::planners::{CoverageProblem, Start};
 use oxcover::render::{Scene, render_to_file};
 use oxcover::report::metric_rows;
 use oxcover_grid::components::components4;
 use oxcover_grid::io::write_ros_map;
-use oxcover_grid::{Cell, Coverability, DiscRobot, OccupancyGrid, Point};
+use oxcover_grid::{Cell, DiscRobot, OccupancyGrid, Point};
 use oxcover_robot::{Limits, RobotSpec};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -103,13 +104,13 @@ pub fn robot() -> DiscRobot {
 /// # Errors
 /// A map with no admissible cell.
 pub fn starts(map: &OccupancyGrid, env: usize) -> anyhow::Result<Vec<Point>> {
-    let probe = Coverability::new(map, robot(), None)?;
-    let comps = components4(&probe.admissible);
+    let probe = CoverageProblem::new(map, robot(), Start::First)?;
+    let admissible = &probe.cells().admissible;
+    let comps = components4(admissible);
     let big = comps
         .largest()
         .ok_or_else(|| anyhow::anyhow!("no admissible cell"))?;
-    let cells: Vec<Cell> = probe
-        .admissible
+    let cells: Vec<Cell> = admissible
         .true_cells()
         .filter(|&c| comps.labels[c] == big)
         .collect();
@@ -147,18 +148,8 @@ pub fn smooth_details(
     start: Point,
 ) -> anyhow::Result<SmoothDetails> {
     use oxcover_planners::smooth::{Behaviour, Smooth};
-    let problem = Coverability::new(map, robot(), Some(start))?;
-    let k = oxcover::planner::coarse_block(&robot(), map.resolution());
-    let coarse = oxcover_grid::CoarseGrid::new(&problem.reachable, k);
-    let input = oxcover_planners::PlannerInput {
-        plannable: &problem.reachable,
-        coarse: &coarse,
-        start: coarse.coarse_of(problem.start),
-        seed: 0,
-        frame: *map.frame(),
-        tool_cells: TOOL_RADIUS / map.resolution(),
-    };
-    let d = Smooth::new().plan_detailed(&input)?;
+    let problem = CoverageProblem::new(map, robot(), Start::At(start))?;
+    let d = Smooth::new().plan_detailed(&problem.input(0))?;
     let mut lengths = [0.0; 4];
     for piece in &d.pieces {
         let slot = match piece.behaviour {
@@ -236,11 +227,13 @@ pub fn run_one(
     planner: &'static str,
     cfg: &ClosedLoop,
 ) -> anyhow::Result<(Measured, Vec<Point>, Run)> {
-    let mut req = PlanRequest::new(planner, map.resolution());
-    req.robot = robot();
-    req.start = Some(start);
-    req.seed = start_index as u64;
-    req.boundary_pass = false;
+    let req = PlanRequest {
+        seed: start_index as u64,
+        ..PlanRequest::new(planner, map.resolution())?
+            .robot(robot())
+            .start(Start::At(start))
+            .boundary_pass(false)
+    };
     let planned = plan(map, &req)?;
     let run = execute(map, robot(), &planned.points, cfg)?;
     let m = &run.evaluation.metrics;

@@ -10,59 +10,56 @@
 
 use std::fmt::Write as _;
 
-use oxcover::planner::{PlanOutcome, PlanRequest, plan_with};
+use std::sync::Arc;
+
+use oxcover::pipeline::{PlanOutcome, PlanRequest, plan};
+use oxcover::planners::Start;
 use oxcover::render::{Scene, render_to_file};
 use oxcover::report::metric_rows;
 use oxcover_grid::rotate::rotate;
-use oxcover_grid::{DiscRobot, OccupancyGrid, Point};
+use oxcover_grid::{DiscRobot, OccupancyGrid};
 use oxcover_planners::border_expansion::BorderExpansionPlanner;
 use oxcover_planners::sweep::{Decomposition, Sweep};
-use oxcover_planners::{Planner, registry};
+use oxcover_planners::{CoverageProblem, Planner, PlannerOptions, build, registry};
 use rayon::prelude::*;
 
 use super::dir;
 
 const RADIUS: f64 = 0.3;
 
-/// The first cell of the largest admissible region, in metres.
-fn start(map: &OccupancyGrid) -> Option<Point> {
-    crate::largest_region_start(map, RADIUS).map(|c| map.frame().cell_center(c))
+/// The problem of `map` for the 0.3 m robot and tool, from the first cell
+/// of the largest admissible region.
+fn problem(map: &OccupancyGrid) -> anyhow::Result<CoverageProblem> {
+    let robot = DiscRobot::new(RADIUS, RADIUS)?;
+    Ok(CoverageProblem::new(map, robot, Start::LargestRegion)?)
 }
 
-fn run_plan(map: &OccupancyGrid, planner: &dyn Planner) -> anyhow::Result<PlanOutcome> {
-    let request = PlanRequest {
-        robot: DiscRobot::new(RADIUS, RADIUS)?,
-        start: start(map),
-        ..PlanRequest::new(planner.name(), map.resolution())
+fn run_plan(map: &OccupancyGrid, planner: Arc<dyn Planner>) -> anyhow::Result<PlanOutcome> {
+    let request = PlanRequest::with_planner(planner, map.resolution())
+        .robot(DiscRobot::new(RADIUS, RADIUS)?)
+        .start(Start::LargestRegion);
+    Ok(plan(map, &request)?)
+}
+
+/// Pavlíček 2002's three methods; sweeps at a fixed 0° for the rotation study.
+fn methods(fixed: bool) -> Vec<(&'static str, Arc<dyn Planner>)> {
+    let options = if fixed {
+        PlannerOptions::new().sweep_angle(0.0)
+    } else {
+        PlannerOptions::new()
     };
-    Ok(plan_with(map, planner, &request)?)
-}
-
-/// Seed 004's three methods; sweeps at a fixed 0° for the rotation study.
-fn methods(fixed: bool) -> Vec<(&'static str, Box<dyn Planner>)> {
-    let b = Sweep::new(Decomposition::Boustrophedon);
-    let t = Sweep::new(Decomposition::Trapezoidal);
+    let sweep = |name| build(name, &options).expect("a sweep planner takes an angle");
     vec![
-        (
-            "boustrophedon",
-            Box::new(if fixed { b.at_angle(0.0) } else { b }),
-        ),
-        (
-            "trapezoidal",
-            Box::new(if fixed { t.at_angle(0.0) } else { t }),
-        ),
-        ("border-expansion", Box::new(BorderExpansionPlanner)),
+        ("boustrophedon", sweep("boustrophedon")),
+        ("trapezoidal", sweep("trapezoidal")),
+        ("border-expansion", Arc::new(BorderExpansionPlanner)),
     ]
 }
 
 /// Cells (sweeps, at the chosen angle) or roads of one plan.
 fn structure(map: &OccupancyGrid, method: &str) -> anyhow::Result<(usize, f64)> {
-    let robot = DiscRobot::new(RADIUS, RADIUS)?;
-    let problem = oxcover_grid::Coverability::new(map, robot, start(map))?;
-    let k = oxcover::planner::coarse_block(&robot, map.resolution());
-    let coarse = oxcover_grid::CoarseGrid::new(&problem.reachable, k);
-    let mut input = oxcover_planners::PlannerInput::new(&problem.reachable, &coarse, problem.start);
-    input.frame = *map.frame();
+    let problem = problem(map)?;
+    let input = problem.input(0);
     Ok(match method {
         "border-expansion" => {
             let p = BorderExpansionPlanner.plan_detailed(&input)?;
@@ -85,10 +82,9 @@ fn decomposition_figure(
     map: &OccupancyGrid,
     out: &std::path::Path,
 ) -> anyhow::Result<(usize, usize, usize, usize, usize)> {
-    let robot = DiscRobot::new(RADIUS, RADIUS)?;
-    let problem = oxcover_grid::Coverability::new(map, robot, start(map))?;
-    let k = oxcover::planner::coarse_block(&robot, map.resolution()) as f64;
-    let plannable = &problem.reachable;
+    let problem = problem(map)?;
+    let k = problem.block() as f64;
+    let plannable = problem.plannable();
     let trap = Sweep::new(Decomposition::Trapezoidal).decompose(plannable, 0.0, k);
     let bous = Sweep::new(Decomposition::Boustrophedon).decompose(plannable, 0.0, k);
     let roads = oxcover_decomp::border_expansion(plannable, k);
@@ -125,6 +121,11 @@ fn plan_png(
     Ok(())
 }
 
+/// A registered planner with its default options.
+fn default(p: &dyn Planner) -> Arc<dyn Planner> {
+    build(p.name(), &PlannerOptions::new()).expect("registered")
+}
+
 /// Runs `pavlicek2002`.
 ///
 /// # Errors
@@ -142,7 +143,7 @@ pub fn run() -> anyhow::Result<()> {
             methods(false)
                 .into_iter()
                 .map(|(m, p)| {
-                    let r = run_plan(map, p.as_ref()).and_then(|o| {
+                    let r = run_plan(map, p.clone()).and_then(|o| {
                         let (n, extra) = structure(map, m)?;
                         let x = &o.evaluation.metrics;
                         Ok(format!(
@@ -175,7 +176,7 @@ pub fn run() -> anyhow::Result<()> {
                         .into_iter()
                         .enumerate()
                         .filter_map(|(k, (_, p))| {
-                            run_plan(&rm, p.as_ref()).ok().map(|o| {
+                            run_plan(&rm, p.clone()).ok().map(|o| {
                                 (
                                     mi,
                                     ai,
@@ -252,7 +253,7 @@ pub fn run() -> anyhow::Result<()> {
             counts.0, counts.1, counts.2, counts.3, counts.4
         );
         for (m, p) in methods(false) {
-            let o = run_plan(map, p.as_ref())?;
+            let o = run_plan(map, p.clone())?;
             let file = format!("pavlicek2002_{m}.png");
             plan_png(map, &format!("{name} - {m}"), &o, &out.join(&file))?;
             let _ = writeln!(md, "![{m} on {name}]({file})\n");
@@ -277,8 +278,10 @@ pub fn run_floorplans() -> anyhow::Result<()> {
         "# Every planner on the ipa floor plans\n\nCommand: `cargo xtask reproduce floorplans` (release, rayon over maps). Robot and tool radius 0.3 m, 0.05 m/px, start at the first cell of the largest admissible region, boundary pass on. Per planner: means over the maps it accepted (`refused` counts maps beyond its size limit); `min coverage` is the worst map; `plan ms` is the whole pipeline (coverage problem, planner, boundary pass).\n\n| planner | maps | refused | min coverage | mean coverage | raw coverage | collisions | length m | turns | est_time_s | plan ms |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
     );
     for p in registry() {
-        let res: Vec<anyhow::Result<PlanOutcome>> =
-            ipa.par_iter().map(|(_, m)| run_plan(m, *p)).collect();
+        let res: Vec<anyhow::Result<PlanOutcome>> = ipa
+            .par_iter()
+            .map(|(_, m)| run_plan(m, default(p)))
+            .collect();
         let ok: Vec<&PlanOutcome> = res.iter().filter_map(|r| r.as_ref().ok()).collect();
         if ok.is_empty() {
             let why = res
@@ -319,7 +322,9 @@ pub fn run_floorplans() -> anyhow::Result<()> {
     if let Some((name, map)) = ipa.iter().find(|(n, _)| n.ends_with("lab_c.png")) {
         md += "\n## One PNG per planner (lab_c)\n\n";
         for p in registry() {
-            let Ok(o) = run_plan(map, *p) else { continue };
+            let Ok(o) = run_plan(map, default(p)) else {
+                continue;
+            };
             let file = format!("floorplans_{}.png", p.name());
             plan_png(map, &format!("{name} - {}", p.name()), &o, &out.join(&file))?;
             let _ = writeln!(md, "![{} on {name}]({file})\n", p.name());

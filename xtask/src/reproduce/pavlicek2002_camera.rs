@@ -18,7 +18,8 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use oxcover::planner::{PlanRequest, plan};
+use oxcover::pipeline::{PlanRequest, plan, planner};
+use oxcover::planners::PlannerOptions;
 use oxcover::render::{Scene, render_to_file};
 use oxcover_grid::{Cell, DiscRobot, Grid, OccupancyGrid};
 use oxcover_robot::World;
@@ -253,10 +254,10 @@ pub fn learn(truth: &Camera) -> anyhow::Result<Profile> {
 /// The drive: a lawnmower path through the office's free space, a pose
 /// every `spacing` m, heading along the path.
 fn drive(map: &OccupancyGrid, spacing: f64) -> anyhow::Result<Vec<(f64, f64, f64)>> {
-    let mut req = PlanRequest::new("boustrophedon", map.resolution());
-    req.robot = DiscRobot::new(0.25, 0.4)?;
-    req.boundary_pass = false;
-    req.sweep_angle_deg = Some(0.0);
+    let sweep = planner("boustrophedon", &PlannerOptions::new().sweep_angle(0.0))?;
+    let req = PlanRequest::with_planner(sweep, map.resolution())
+        .robot(DiscRobot::new(0.25, 0.4)?)
+        .boundary_pass(false);
     let points = plan(map, &req)?.points;
     let mut poses = Vec::new();
     let mut carry = 0.0;
@@ -355,8 +356,7 @@ pub fn run() -> anyhow::Result<()> {
         let all = score(&map, &truth, None);
         let mut plans = Vec::new();
         for name in ["boustrophedon", "border-expansion"] {
-            let mut req = PlanRequest::new(name, map.resolution());
-            req.robot = robot;
+            let req = PlanRequest::new(name, map.resolution())?.robot(robot);
             let (coverage, collisions, length) = match plan(&map, &req) {
                 Ok(o) => {
                     let ev =

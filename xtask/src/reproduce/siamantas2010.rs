@@ -15,7 +15,7 @@ use oxcover_grid::{Cell, CoarseGrid};
 use oxcover_planners::full_dtc::full_dtc;
 use oxcover_planners::grid_cover::grid_cover;
 use oxcover_planners::optimal::{Optimal, lower_bound, optimal};
-use oxcover_planners::{PlannerInput, steps};
+use oxcover_planners::steps;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
@@ -86,9 +86,8 @@ pub fn run_map(size: usize, i: usize) -> anyhow::Result<Row> {
     let t = Instant::now();
     let gc = grid_cover(&coarse, start)?;
     let grid_cover_ms = t.elapsed().as_secs_f64() * 1e3;
-    let input = PlannerInput::new(&free, &coarse, start);
     let t = Instant::now();
-    let fd = full_dtc(&input)?;
+    let fd = full_dtc(&coarse, start)?;
     let full_dtc_ms = t.elapsed().as_secs_f64() * 1e3;
     let (mnp, optimal_ms) = if size == 8 {
         let t = Instant::now();

@@ -15,7 +15,7 @@
 use std::fmt::Write as _;
 
 use oxcover::closed_loop::{ClosedLoop, ControllerKind, Run, execute};
-use oxcover::planner::{PlanRequest, plan};
+use oxcover::pipeline::{PlanRequest, plan};
 use oxcover::render::{Scene, render_to_file};
 use oxcover_grid::random::uniform_connected;
 use oxcover_grid::{DiscRobot, OccupancyGrid, Point};
@@ -54,9 +54,9 @@ pub fn map() -> anyhow::Result<OccupancyGrid> {
 pub fn runs() -> anyhow::Result<(OccupancyGrid, Vec<Point>, Vec<Run>)> {
     let map = map()?;
     let robot = DiscRobot::new(0.17, CELL / 2.0)?;
-    let mut req = PlanRequest::new("grid-cover", CELL);
-    req.robot = robot;
-    req.boundary_pass = false;
+    let req = PlanRequest::new("grid-cover", CELL)?
+        .robot(robot)
+        .boundary_pass(false);
     let reference = plan(&map, &req)?.points;
     let spec = super::lee2011::closed_loop()?.spec;
     let runs = RUNS

@@ -16,12 +16,13 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use oxcover::planner::{PlanRequest, plan};
+use oxcover::pipeline::{PlanRequest, plan};
+use oxcover::planners::Start;
 use oxcover::render::{Scene, render_svg};
 use oxcover::report::metric_rows;
 use oxcover_grid::io::{ReadOptions, read_map};
 use oxcover_grid::random::{blobs, rectangles};
-use oxcover_grid::{DiscRobot, OccupancyGrid, Point};
+use oxcover_grid::{DiscRobot, OccupancyGrid};
 use rayon::prelude::*;
 
 use super::dir;
@@ -118,22 +119,13 @@ pub fn cases() -> Vec<Case> {
     v
 }
 
-/// The start: first cell of the largest admissible region (a SLAM map's first
-/// free cell is often noise).
-fn start_of(case: &Case) -> Option<Point> {
-    crate::largest_region_start(&case.map, case.robot.robot_radius)
-        .map(|c| case.map.frame().cell_center(c))
-}
-
 fn run_case(case: &Case, planner: &'static str) -> anyhow::Result<Result> {
-    let mut req = PlanRequest {
-        robot: case.robot,
-        start: start_of(case),
-        boundary_pass: false,
-        ..PlanRequest::new(planner, case.map.resolution())
-    };
-    let raw = plan(&case.map, &req)?;
-    req.boundary_pass = true;
+    // The start: first cell of the largest admissible region (a SLAM map's
+    // first free cell is often noise).
+    let req = PlanRequest::new(planner, case.map.resolution())?
+        .robot(case.robot)
+        .start(Start::LargestRegion);
+    let raw = plan(&case.map, &req.clone().boundary_pass(false))?;
     let full = plan(&case.map, &req)?;
     let m = &raw.evaluation.metrics;
     Ok(Result {
@@ -226,12 +218,10 @@ pub fn run() -> anyhow::Result<()> {
         .iter()
         .find(|c| c.name.starts_with("ROS simple_rooms"))
     {
-        let req = PlanRequest {
-            robot: case.robot,
-            start: start_of(case),
-            boundary_pass: false,
-            ..PlanRequest::new("rect-priority", case.map.resolution())
-        };
+        let req = PlanRequest::new("rect-priority", case.map.resolution())?
+            .robot(case.robot)
+            .start(Start::LargestRegion)
+            .boundary_pass(false);
         let o = plan(&case.map, &req)?;
         let scene = Scene {
             map: &case.map,

@@ -6,23 +6,21 @@
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
-use oxcover_grid::DiscRobot;
-use oxcover_grid::io::{ReadOptions, read_ros_yaml_from_bytes};
+use oxcover::grid::io::{ReadOptions, read_ros_yaml_from_bytes};
+use oxcover::pipeline::{Outputs, PlanRequest, plan, write_outputs};
+use oxcover::report::table;
+use oxcover::{DiscRobot, Error, Result};
 
-use crate::cli::{Outputs, write_plan_outputs};
-use crate::error::{Error, Result};
-use crate::planner::{PlanRequest, plan};
-use crate::report::{plan_rows, table};
-
-const YAML: &str = include_str!("../../../fixtures/maps/turtlebot_simulator/simple_rooms.yaml");
-const IMAGE: &[u8] = include_bytes!("../../../fixtures/maps/turtlebot_simulator/simple_rooms.png");
+const YAML: &str = include_str!("../../../../fixtures/maps/turtlebot_simulator/simple_rooms.yaml");
+const IMAGE: &[u8] =
+    include_bytes!("../../../../fixtures/maps/turtlebot_simulator/simple_rooms.png");
 const NAME: &str = "fixtures/maps/turtlebot_simulator/simple_rooms.yaml";
 
 /// Runs the demo, writing into `./oxcover-demo/`.
 ///
 /// # Errors
 /// When the output directory or files cannot be written.
-pub fn run() -> Result<()> {
+pub(crate) fn run() -> Result<()> {
     run_into(Path::new("oxcover-demo"))
 }
 
@@ -30,17 +28,14 @@ pub fn run() -> Result<()> {
 ///
 /// # Errors
 /// When `dir` or the files cannot be written.
-pub fn run_into(dir: &Path) -> Result<()> {
+fn run_into(dir: &Path) -> Result<()> {
     let map = read_ros_yaml_from_bytes(Path::new(NAME), YAML, IMAGE, &ReadOptions::default())?;
-    let request = PlanRequest {
-        robot: DiscRobot::new(0.15, 0.15)?,
-        ..PlanRequest::new("dtc", map.resolution())
-    };
+    let request = PlanRequest::new("dtc", map.resolution())?.robot(DiscRobot::new(0.15, 0.15)?);
     let outcome = plan(&map, &request)?;
     std::fs::create_dir_all(dir).map_err(|e| Error::write(dir, e))?;
     let file = |ext: &str| -> PathBuf { dir.join(format!("simple_rooms_dtc.{ext}")) };
     let (csv, svg, png, json) = (file("csv"), file("svg"), file("png"), file("json"));
-    let written = write_plan_outputs(
+    let written = write_outputs(
         &map,
         NAME,
         &request,
@@ -61,7 +56,7 @@ pub fn run_into(dir: &Path) -> Result<()> {
         map.resolution(),
         outcome.plan_ms
     );
-    let _ = write!(out, "{}", table(&plan_rows(&outcome)));
+    let _ = write!(out, "{}", table(&outcome.rows()));
     let _ = writeln!(out);
     for w in written {
         let shown = std::fs::canonicalize(&w).unwrap_or(w);

@@ -1,0 +1,426 @@
+//! The coverage problem: made once from a map, a robot and a start, and the
+//! one place where a planner's input comes from.
+//!
+//! [`CoverageProblem`] owns everything a planner and the pipeline around it
+//! need, derived once:
+//!
+//! - the contract's cells ([`Coverability`]: admissible, reachable from the
+//!   start, coverable by the tool) and the map frame;
+//! - the coverage grid ([`CoarseGrid`]) whose cells are one tool diameter wide,
+//!   `block = max(1, floor(2T / resolution + tolerance))` fine cells
+//!   ([`coarse_block`]), so lanes one block apart leave no gap;
+//! - the tool radius in fine cells, `T / resolution` ([`CoverageProblem::tool_cells`]),
+//!   the ONE tool-radius figure planners see.
+//!
+//! It hands planners their [`PlannerInput`] ([`CoverageProblem::input`]) and
+//! does the steps every plan shares: [`CoverageProblem::expand`] (coverage
+//! steps to fine 4-connected steps), [`CoverageProblem::lead_in`] (from the
+//! start cell to where a plan begins) and [`CoverageProblem::boundary_pass`]
+//! (cover what a plan left). [`CoverageProblem::restricted`] narrows it to a
+//! sub-region (a room), for planning region by region.
+//!
+//! The start is a [`Start`]: the contract's default (the first admissible cell
+//! in row-major order), a position, a cell, or the first cell of the largest
+//! admissible region ([`largest_region_start`]), which experiments use because
+//! the contract's default start may be a speck of SLAM noise.
+
+use oxcover_distance::{Wavefront, cidt};
+use oxcover_grid::{
+    Cell, CoarseGrid, Coverability, DiscRobot, Grid, MapFrame, OccupancyGrid, Point,
+    TOLERANCE_CELLS, admissible, components4, coverable_cells, reachable,
+};
+
+use crate::boundary_pass::{BoundaryRoute, boundary_pass};
+use crate::error::{Error, Result};
+
+/// Where the robot starts.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Start {
+    /// The contract's default: the first admissible cell, row-major from the
+    /// image's top row.
+    #[default]
+    First,
+    /// A position in metres (map frame); its cell must be admissible.
+    At(Point),
+    /// A cell of the map (row 0 at the image's top); it must be admissible.
+    Cell(Cell),
+    /// The first admissible cell (row-major) of the largest 4-connected
+    /// admissible region (ties: the region met first).
+    LargestRegion,
+}
+
+impl From<Option<Point>> for Start {
+    fn from(p: Option<Point>) -> Self {
+        p.map_or(Start::First, Start::At)
+    }
+}
+
+/// The first admissible cell (row-major) of the largest 4-connected admissible
+/// region for a robot of `robot_radius`, if any cell is admissible.
+#[must_use]
+pub fn largest_region_start(map: &OccupancyGrid, robot_radius: f64) -> Option<Cell> {
+    let adm = admissible(map, robot_radius);
+    let comps = components4(&adm);
+    let big = comps.largest()?;
+    adm.true_cells().find(|&c| comps.labels[c] == big)
+}
+
+/// Coverage-cell side in fine cells for a tool radius: one tool diameter,
+/// `max(1, floor(2T / resolution + tolerance))`.
+#[must_use]
+pub fn coarse_block(robot: &DiscRobot, resolution: f64) -> usize {
+    let k = (2.0 * robot.tool_radius / resolution + TOLERANCE_CELLS).floor();
+    if k.is_finite() && k >= 1.0 {
+        k as usize
+    } else {
+        1
+    }
+}
+
+/// The coverage problem on a map for a robot and a start.
+#[derive(Clone, Debug)]
+pub struct CoverageProblem {
+    frame: MapFrame,
+    cells: Coverability,
+    coarse: CoarseGrid,
+    tool_cells: f64,
+    /// The start position asked for, when it was a position.
+    start_point: Option<Point>,
+}
+
+impl CoverageProblem {
+    /// Builds the problem.
+    ///
+    /// # Errors
+    /// [`Error::Map`]: no free or admissible cell, a start outside the map or
+    /// not admissible (the grid crate's messages).
+    pub fn new(map: &OccupancyGrid, robot: DiscRobot, start: Start) -> Result<Self> {
+        let (cells, start_point) = match start {
+            Start::First => (Coverability::new(map, robot, None)?, None),
+            Start::At(p) => (Coverability::new(map, robot, Some(p))?, Some(p)),
+            Start::Cell(c) => (Coverability::with_start_cell(map, robot, c)?, None),
+            Start::LargestRegion => {
+                let cell = largest_region_start(map, robot.robot_radius).ok_or(
+                    oxcover_grid::Error::NoAdmissibleCell {
+                        robot_radius: robot.robot_radius,
+                    },
+                );
+                match cell {
+                    Ok(c) => (Coverability::with_start_cell(map, robot, c)?, None),
+                    // Let the grid crate name the problem (no free cell, or none admissible).
+                    Err(e) => {
+                        Coverability::new(map, robot, None)?;
+                        return Err(e.into());
+                    }
+                }
+            }
+        };
+        let frame = *map.frame();
+        let coarse = CoarseGrid::new(&cells.reachable, coarse_block(&robot, frame.resolution()));
+        Ok(Self {
+            frame,
+            cells,
+            coarse,
+            tool_cells: robot.tool_cells(frame.resolution()),
+            start_point,
+        })
+    }
+
+    /// The problem on a sub-region: plannable cells are those of this problem
+    /// inside `mask` and 4-connected to `start` there; coverable cells are
+    /// this problem's coverable cells the tool reaches from them.
+    ///
+    /// # Errors
+    /// [`Error::BadParameter`] when `mask` is not the map's size or `start`
+    /// is not a plannable cell inside it.
+    pub fn restricted(&self, mask: &Grid<bool>, start: Cell) -> Result<Self> {
+        let plannable = self.plannable();
+        if (mask.width(), mask.height()) != (plannable.width(), plannable.height()) {
+            return Err(Error::BadParameter {
+                name: "region mask",
+                value: format!("{}x{}", mask.width(), mask.height()),
+                expected: "the map's size",
+            });
+        }
+        if !(plannable.is_set(start) && mask.is_set(start)) {
+            return Err(Error::BadParameter {
+                name: "region start",
+                value: format!("{start:?}"),
+                expected: "a plannable cell inside the region",
+            });
+        }
+        let inside = Grid::from_fn(mask.width(), mask.height(), |c| plannable[c] && mask[c]);
+        let reach = reachable(&inside, start);
+        let coverable = coverable_cells(&self.cells.coverable, &reach, self.tool_cells);
+        let cells = Coverability {
+            robot: self.cells.robot,
+            admissible: self.cells.admissible.clone(),
+            start,
+            reachable: reach,
+            coverable,
+        };
+        let coarse = CoarseGrid::new(&cells.reachable, self.coarse.block_size());
+        Ok(Self {
+            frame: self.frame,
+            cells,
+            coarse,
+            tool_cells: self.tool_cells,
+            start_point: None,
+        })
+    }
+
+    /// What a planner sees, with `seed` for randomised planners.
+    #[must_use]
+    pub fn input(&self, seed: u64) -> PlannerInput<'_> {
+        PlannerInput {
+            plannable: &self.cells.reachable,
+            coarse: &self.coarse,
+            start: self.coarse.coarse_of(self.cells.start),
+            seed,
+            frame: self.frame,
+            tool_cells: self.tool_cells,
+        }
+    }
+
+    /// The map frame.
+    #[must_use]
+    pub fn frame(&self) -> &MapFrame {
+        &self.frame
+    }
+
+    /// The robot and tool.
+    #[must_use]
+    pub fn robot(&self) -> DiscRobot {
+        self.cells.robot
+    }
+
+    /// The contract's cells (admissible, reachable, coverable) and the start cell.
+    #[must_use]
+    pub fn cells(&self) -> &Coverability {
+        &self.cells
+    }
+
+    /// Fine cells a planner may use: admissible and reachable from the start.
+    #[must_use]
+    pub fn plannable(&self) -> &Grid<bool> {
+        &self.cells.reachable
+    }
+
+    /// The start cell.
+    #[must_use]
+    pub fn start_cell(&self) -> Cell {
+        self.cells.start
+    }
+
+    /// The start position asked for, if the start was given in metres.
+    #[must_use]
+    pub fn start_point(&self) -> Option<Point> {
+        self.start_point
+    }
+
+    /// The coverage grid.
+    #[must_use]
+    pub fn coarse(&self) -> &CoarseGrid {
+        &self.coarse
+    }
+
+    /// Fine cells per coverage-cell side ([`coarse_block`]).
+    #[must_use]
+    pub fn block(&self) -> usize {
+        self.coarse.block_size()
+    }
+
+    /// Tool radius in fine cells, `T / resolution`.
+    #[must_use]
+    pub fn tool_cells(&self) -> f64 {
+        self.tool_cells
+    }
+
+    /// The fine path of a plan: coverage steps become the fine paths
+    /// [`CoarseGrid::connect`] gives, from the start's representative.
+    ///
+    /// # Errors
+    /// [`Error::Internal`] if two consecutive coverage cells are not
+    /// connected, or for a metre path (it has no cell path).
+    pub fn expand(&self, output: &PlanOutput) -> Result<Vec<Cell>> {
+        self.input(0).expand(output)
+    }
+
+    /// The fine path from the start cell to `to` (where a plan begins): a
+    /// shortest 4-connected path over plannable cells; just the start when
+    /// `to` is `None` or the start itself.
+    ///
+    /// # Errors
+    /// [`Error::Internal`] when `to` is not reachable from the start.
+    pub fn lead_in(&self, to: Option<Cell>) -> Result<Vec<Cell>> {
+        let start = self.cells.start;
+        let Some(to) = to.filter(|&t| t != start) else {
+            return Ok(vec![start]);
+        };
+        let mut wave = Wavefront::new(&self.cells.reachable);
+        let near = cidt(&mut wave, &[start], |c| c == to).ok_or_else(|| {
+            Error::Internal(format!("plan starts at {to:?}, unreachable from the start"))
+        })?;
+        wave.retrace(near.first())
+            .ok_or_else(|| Error::Internal("lead-in retrace failed".into()))
+    }
+
+    /// The route covering what `points` leaves uncovered, from the plannable
+    /// cell `end` ([`boundary_pass`]).
+    ///
+    /// # Errors
+    /// As [`boundary_pass`].
+    pub fn boundary_pass(&self, points: &[Point], end: Cell) -> Result<BoundaryRoute> {
+        boundary_pass(&self.frame, &self.cells, points, end)
+    }
+}
+
+/// What a planner returns.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PlanOutput {
+    /// Coverage cells from the start; consecutive cells are connected neighbours.
+    Coverage(Vec<Cell>),
+    /// Fine cells from the start's representative; consecutive cells are 4-neighbours.
+    Fine(Vec<Cell>),
+    /// Waypoints in metres (map frame), from the start's representative's centre.
+    Metres(Vec<Point>),
+}
+
+impl PlanOutput {
+    /// The coverage-cell path, if that is what was returned.
+    #[must_use]
+    pub fn coverage(&self) -> Option<&[Cell]> {
+        match self {
+            PlanOutput::Coverage(v) => Some(v),
+            PlanOutput::Fine(_) | PlanOutput::Metres(_) => None,
+        }
+    }
+}
+
+/// The coverage problem as a planner sees it; made by [`CoverageProblem::input`].
+#[derive(Clone, Copy, Debug)]
+#[non_exhaustive]
+pub struct PlannerInput<'a> {
+    /// Fine cells the robot may occupy (admissible and reachable from the start).
+    pub plannable: &'a Grid<bool>,
+    /// The coverage grid built from `plannable`.
+    pub coarse: &'a CoarseGrid,
+    /// The start coverage cell (it has a representative).
+    pub start: Cell,
+    /// Seed for randomised planners.
+    pub seed: u64,
+    /// Where the grid lies in metres (for planners returning metre paths).
+    pub frame: MapFrame,
+    /// Tool radius in fine cells, `T / resolution`: a fine cell counts as
+    /// covered when its centre passes within it (the contract).
+    pub tool_cells: f64,
+}
+
+impl PlannerInput<'_> {
+    /// Coverage cells (those with a representative).
+    #[must_use]
+    pub fn coverage_cells(&self) -> usize {
+        self.coarse.representatives().count(Option::is_some)
+    }
+
+    /// The radius (fine cells) within which a coverage cell's representative
+    /// counts as visited by a metre path: half a coverage cell, or the tool
+    /// radius when the tool is narrower than one fine cell.
+    #[must_use]
+    pub fn visit_radius(&self) -> f64 {
+        (self.coarse.block_size() as f64 / 2.0).min(self.tool_cells)
+    }
+
+    /// See [`CoverageProblem::expand`].
+    ///
+    /// # Errors
+    /// As [`CoverageProblem::expand`].
+    pub fn expand(&self, output: &PlanOutput) -> Result<Vec<Cell>> {
+        let path = match output {
+            PlanOutput::Fine(v) => return Ok(v.clone()),
+            PlanOutput::Metres(_) => {
+                return Err(Error::Internal(
+                    "a metre path has no cell path to expand".into(),
+                ));
+            }
+            PlanOutput::Coverage(v) => v,
+        };
+        let Some(&first) = path.first() else {
+            return Ok(Vec::new());
+        };
+        let rep = self.coarse.representative(first).ok_or_else(|| {
+            Error::Internal(format!("coverage cell {first:?} has no representative"))
+        })?;
+        let mut fine = vec![rep];
+        for w in path.windows(2) {
+            let seg = self
+                .coarse
+                .connect(self.plannable, w[0], w[1])
+                .ok_or_else(|| {
+                    Error::Internal(format!(
+                        "coverage step {:?} -> {:?} is not connected",
+                        w[0], w[1]
+                    ))
+                })?;
+            fine.extend_from_slice(&seg[1..]);
+        }
+        Ok(fine)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use oxcover_grid::io::parse_ascii;
+
+    #[test]
+    fn block_is_one_tool_diameter() {
+        assert_eq!(coarse_block(&DiscRobot::cell_sized(0.05), 0.05), 1);
+        assert_eq!(coarse_block(&DiscRobot::new(0.15, 0.15).unwrap(), 0.05), 6);
+        assert_eq!(coarse_block(&DiscRobot::new(0.0, 0.01).unwrap(), 0.05), 1);
+    }
+
+    #[test]
+    fn one_tool_radius_everywhere() {
+        let (map, _) = parse_ascii("........\n........\n........\n........").unwrap();
+        let p =
+            CoverageProblem::new(&map, DiscRobot::new(0.0, 1.6).unwrap(), Start::First).unwrap();
+        let input = p.input(7);
+        assert_eq!(p.block(), 3);
+        assert_eq!((input.tool_cells, p.tool_cells()), (1.6, 1.6));
+        assert_eq!(input.visit_radius(), 1.5);
+        assert_eq!(input.seed, 7);
+    }
+
+    #[test]
+    fn largest_region_beats_the_first_cell() {
+        let (map, _) = parse_ascii(".#....\n##....\n......").unwrap();
+        let robot = DiscRobot::cell_sized(1.0);
+        let first = CoverageProblem::new(&map, robot, Start::First).unwrap();
+        assert_eq!(first.start_cell(), Cell::new(0, 0));
+        let big = CoverageProblem::new(&map, robot, Start::LargestRegion).unwrap();
+        assert_eq!(big.start_cell(), Cell::new(0, 2));
+        assert_eq!(big.plannable().count_true(), 14);
+    }
+
+    #[test]
+    fn restriction_keeps_the_region_and_refuses_starts_outside_it() {
+        let (map, _) = parse_ascii("....#....\n.........\n....#....").unwrap();
+        let p = CoverageProblem::new(&map, DiscRobot::cell_sized(1.0), Start::First).unwrap();
+        let left = Grid::from_fn(9, 3, |c: Cell| c.col < 4);
+        let r = p.restricted(&left, Cell::new(1, 1)).unwrap();
+        assert_eq!(r.plannable().count_true(), 12);
+        assert_eq!(r.cells().coverable.count_true(), 12);
+        assert!(p.restricted(&left, Cell::new(1, 6)).is_err());
+        let small = Grid::new(2, 2, true);
+        assert!(p.restricted(&small, Cell::new(0, 0)).is_err());
+    }
+
+    #[test]
+    fn lead_in_is_a_shortest_path() {
+        let (map, _) = parse_ascii("...\n.#.\n...").unwrap();
+        let p = CoverageProblem::new(&map, DiscRobot::cell_sized(1.0), Start::First).unwrap();
+        assert_eq!(p.lead_in(None).unwrap(), vec![Cell::new(0, 0)]);
+        assert_eq!(p.lead_in(Some(Cell::new(2, 2))).unwrap().len(), 5);
+    }
+}

@@ -1,0 +1,86 @@
+//! Arguments and loaders shared by several commands: robot radii, on/off
+//! switches, the start position, map loading.
+
+use std::path::Path;
+
+use clap::ValueEnum;
+use oxcover::grid::io::{ReadOptions, read_map};
+use oxcover::grid::{DiscRobot, OccupancyGrid, Point};
+use oxcover::{Error, Result};
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum OnOff {
+    On,
+    Off,
+}
+
+#[derive(Debug, clap::Args)]
+pub(crate) struct RobotArgs {
+    /// Robot body radius in metres [default: 0].
+    #[arg(long, value_name = "R", allow_negative_numbers = true)]
+    pub(crate) robot_radius: Option<f64>,
+    /// Tool (cleaning/sensing) radius in metres [default: resolution / 2].
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    pub(crate) tool_radius: Option<f64>,
+    /// Resolution in m/cell for images read without a yaml [default: 1.0].
+    #[arg(long, value_name = "M", allow_negative_numbers = true)]
+    pub(crate) resolution: Option<f64>,
+}
+
+pub(crate) fn parse_start(s: &str) -> std::result::Result<Point, String> {
+    let err = || format!("expected X,Y in metres (e.g. 1.5,-2), got `{s}`");
+    let (x, y) = s.split_once(',').ok_or_else(err)?;
+    let x: f64 = x.trim().parse().map_err(|_| err())?;
+    let y: f64 = y.trim().parse().map_err(|_| err())?;
+    if x.is_finite() && y.is_finite() {
+        Ok(Point::new(x, y))
+    } else {
+        Err(format!("expected finite X,Y in metres, got `{s}`"))
+    }
+}
+
+pub(crate) fn read_options(resolution: Option<f64>) -> Result<ReadOptions> {
+    let mut o = ReadOptions::default();
+    if let Some(r) = resolution {
+        o = o.resolution(oxcover::grid::error::positive("--resolution", r)?);
+    }
+    Ok(o)
+}
+
+pub(crate) fn load(map: &Path, resolution: Option<f64>) -> Result<OccupancyGrid> {
+    Ok(read_map(map, &read_options(resolution)?)?)
+}
+
+pub(crate) fn robot_of(args: &RobotArgs, map: &OccupancyGrid) -> Result<DiscRobot> {
+    let res = map.resolution();
+    Ok(DiscRobot::new(
+        args.robot_radius.unwrap_or(0.0),
+        args.tool_radius.unwrap_or(res / 2.0),
+    )?)
+}
+
+pub(crate) fn map_rows(map: &OccupancyGrid) -> Vec<(String, String)> {
+    let c = map.counts();
+    vec![
+        ("size".into(), format!("{}x{}", map.width(), map.height())),
+        ("resolution".into(), format!("{} m", map.resolution())),
+        ("free".into(), c.free.to_string()),
+        ("occupied".into(), c.occupied.to_string()),
+        ("unknown".into(), c.unknown.to_string()),
+    ]
+}
+
+pub(crate) fn read_ron<T: serde::de::DeserializeOwned>(
+    path: &Path,
+    what: &'static str,
+) -> Result<T> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::Read {
+        path: path.to_path_buf(),
+        source: e,
+    })?;
+    ron::from_str(&text).map_err(|e| Error::Argument {
+        name: what,
+        value: path.display().to_string(),
+        expected: format!("a valid {what} file ({e})"),
+    })
+}

@@ -1,0 +1,70 @@
+//! `oxcover info` and `oxcover planners`: a map described, the planners listed.
+
+use std::io::Write as _;
+use std::path::PathBuf;
+
+use oxcover::Result;
+use oxcover::grid::components4;
+use oxcover::pipeline::planners;
+use oxcover::report::table;
+
+use super::args::{load, map_rows};
+
+#[derive(Debug, clap::Args)]
+pub(crate) struct InfoArgs {
+    /// Map file.
+    pub(crate) map: PathBuf,
+    /// Resolution in m/cell for images read without a yaml [default: 1.0].
+    #[arg(long, value_name = "M", allow_negative_numbers = true)]
+    pub(crate) resolution: Option<f64>,
+}
+
+pub(crate) fn cmd_info(a: &InfoArgs) -> Result<()> {
+    let map = load(&a.map, a.resolution)?;
+    let f = map.frame();
+    let (lo, hi) = f.bounds();
+    let free = map.free_mask();
+    let comps = components4(&free);
+    let mut rows = map_rows(&map);
+    rows.push(("origin".into(), format!("({}, {})", lo.x, lo.y)));
+    rows.push((
+        "extent".into(),
+        format!("x {}..{}, y {}..{}", lo.x, hi.x, lo.y, hi.y),
+    ));
+    rows.push(("free components".into(), comps.count().to_string()));
+    if let Some(l) = comps.largest() {
+        rows.push((
+            "largest component".into(),
+            comps.sizes[l as usize - 1].to_string(),
+        ));
+    }
+    if let Some(s) = free.true_cells().next() {
+        let p = f.cell_center(s);
+        rows.push(("default start".into(), format!("{},{}", p.x, p.y)));
+    }
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(out, "{}", a.map.display());
+    let _ = write!(out, "{}", table(&rows));
+    Ok(())
+}
+
+pub(crate) fn cmd_planners() {
+    let mut out = std::io::stdout().lock();
+    let list = planners();
+    let w = list.iter().map(|p| p.name.len()).max().unwrap_or(4);
+    let _ = writeln!(out, "{:<w$}  complete  description", "name");
+    for p in &list {
+        let _ = writeln!(
+            out,
+            "{:<w$}  {:<8}  {}",
+            p.name,
+            if p.complete { "yes" } else { "no" },
+            p.summary
+        );
+    }
+    let _ = writeln!(
+        out,
+        "\n{:<w$}  {:<8}  online sensor-based boustrophedon coverage of unknown polygonal worlds (seed 003): `oxcover explore WORLD.ron`",
+        "sensor-bcd", "yes"
+    );
+}

@@ -1,0 +1,102 @@
+//! `oxcover plan`: a coverage path written as CSV, pictures and a JSON report.
+
+use std::io::Write as _;
+use std::path::PathBuf;
+
+use oxcover::Result;
+use oxcover::grid::{OccupancyGrid, Point};
+use oxcover::pipeline::{Outputs, PlanRequest, coverage_notes, plan, planner, write_outputs};
+use oxcover::planners::{PlannerOptions, Start};
+use oxcover::report::table;
+
+use super::args::{OnOff, RobotArgs, load, parse_start, robot_of};
+
+#[derive(Debug, clap::Args)]
+pub(crate) struct PlanArgs {
+    /// Map file (.yaml, .pgm, .png, .bmp or .map).
+    pub(crate) map: PathBuf,
+    /// Planner name (see `oxcover planners`).
+    #[arg(long, value_name = "NAME")]
+    pub(crate) planner: String,
+    #[command(flatten)]
+    pub(crate) robot: RobotArgs,
+    /// Start position in metres [default: first admissible cell, row-major].
+    #[arg(long, value_name = "X,Y", value_parser = parse_start, allow_hyphen_values = true)]
+    pub(crate) start: Option<Point>,
+    /// Seed for randomised planners.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub(crate) seed: u64,
+    /// Append a pass along obstacle boundaries covering what the planner missed.
+    #[arg(long, value_enum, value_name = "on|off", default_value_t = OnOff::On)]
+    pub(crate) boundary_pass: OnOff,
+    /// Sweep angle in degrees for boustrophedon and trapezoidal (lanes along it,
+    /// counter-clockwise from the map's x axis) [default: best of 0, 15, ..., 165].
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    pub(crate) sweep_angle: Option<f64>,
+    /// Path file to write (CSV, header x,y).
+    #[arg(long, value_name = "PATH.csv")]
+    pub(crate) out: Option<PathBuf>,
+    /// SVG picture to write.
+    #[arg(long, value_name = "F.svg")]
+    pub(crate) svg: Option<PathBuf>,
+    /// PNG picture to write.
+    #[arg(long, value_name = "F.png")]
+    pub(crate) png: Option<PathBuf>,
+    /// JSON report to write (metrics, planner, parameters, plan_ms).
+    #[arg(long, value_name = "F.json")]
+    pub(crate) report: Option<PathBuf>,
+}
+
+/// The map and the plan request the `plan` options describe.
+pub(crate) fn map_and_request(a: &PlanArgs) -> Result<(OccupancyGrid, PlanRequest)> {
+    let map = load(&a.map, a.robot.resolution)?;
+    let robot = robot_of(&a.robot, &map)?;
+    let mut options = PlannerOptions::new();
+    options.sweep_angle_deg = a.sweep_angle;
+    let request = PlanRequest {
+        planner: planner(&a.planner, &options)?,
+        robot,
+        start: Start::from(a.start),
+        seed: a.seed,
+        boundary_pass: a.boundary_pass == OnOff::On,
+    };
+    Ok((map, request))
+}
+
+pub(crate) fn cmd_plan(a: &PlanArgs) -> Result<()> {
+    let (map, request) = map_and_request(a)?;
+    let outcome = plan(&map, &request)?;
+    let name = a.map.display().to_string();
+    let written = write_outputs(
+        &map,
+        &name,
+        &request,
+        &outcome,
+        &Outputs {
+            csv: a.out.as_deref(),
+            svg: a.svg.as_deref(),
+            png: a.png.as_deref(),
+            report: a.report.as_deref(),
+        },
+    )?;
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(
+        out,
+        "{} on {} ({}x{} cells, {} m/cell): {} waypoints in {:.0} ms",
+        request.planner.name(),
+        name,
+        map.width(),
+        map.height(),
+        map.resolution(),
+        outcome.points.len(),
+        outcome.plan_ms
+    );
+    let _ = write!(out, "{}", table(&outcome.rows()));
+    for w in written {
+        let _ = writeln!(out, "wrote {}", w.display());
+    }
+    for note in coverage_notes(&map, &outcome.evaluation.problem, a.start.is_none()) {
+        let _ = writeln!(std::io::stderr(), "note: {note}");
+    }
+    Ok(())
+}

@@ -1,0 +1,64 @@
+//! `oxcover render`: a map, optionally with a path, as SVG or PNG.
+
+use std::io::Write as _;
+use std::path::PathBuf;
+
+use oxcover::Result;
+use oxcover::metrics::{MetricParams, evaluate};
+use oxcover::path::read_csv;
+use oxcover::pipeline::short_name;
+use oxcover::render::{Scene, render_to_file};
+use oxcover::report::metric_rows;
+
+use super::args::{RobotArgs, load, map_rows, robot_of};
+
+#[derive(Debug, clap::Args)]
+pub(crate) struct RenderArgs {
+    /// Map file.
+    pub(crate) map: PathBuf,
+    /// Optional path file to draw (with its coverage).
+    pub(crate) path: Option<PathBuf>,
+    /// Output picture, .svg or .png.
+    #[arg(long, value_name = "F.svg|F.png")]
+    pub(crate) out: PathBuf,
+    #[command(flatten)]
+    pub(crate) robot: RobotArgs,
+}
+
+pub(crate) fn cmd_render(a: &RenderArgs) -> Result<()> {
+    let map = load(&a.map, a.robot.resolution)?;
+    let name = short_name(&a.map.display().to_string());
+    match &a.path {
+        Some(path_file) => {
+            let robot = robot_of(&a.robot, &map)?;
+            let points = read_csv(path_file)?;
+            let ev = evaluate(&map, robot, &points, &MetricParams::default())?;
+            let scene = Scene {
+                map: &map,
+                path: &points,
+                planned: None,
+                covered: Some(&ev.covered),
+                coverable: Some(&ev.problem.coverable),
+                title: format!("{name} - {}", short_name(&path_file.display().to_string())),
+                overlay: None,
+                rows: metric_rows(&ev.metrics),
+            };
+            render_to_file(&scene, &a.out)?;
+        }
+        None => {
+            let scene = Scene {
+                map: &map,
+                path: &[],
+                planned: None,
+                covered: None,
+                coverable: None,
+                title: name,
+                overlay: None,
+                rows: map_rows(&map),
+            };
+            render_to_file(&scene, &a.out)?;
+        }
+    }
+    let _ = writeln!(std::io::stdout(), "wrote {}", a.out.display());
+    Ok(())
+}

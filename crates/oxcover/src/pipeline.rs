@@ -1,0 +1,505 @@
+//! The plan pipeline, the one path from a map to written outputs that the
+//! command line, the demo, every experiment and every bench share:
+//!
+//! 1. **problem**: the map, the robot and the start make a
+//!    [`CoverageProblem`] (admissible, reachable and coverable cells; the
+//!    coverage grid one tool diameter wide; the tool radius in cells);
+//! 2. **plan**: the planner (a value from [`oxcover_planners::build`] or any
+//!    [`Planner`]) plans on the problem's input; its plan becomes a fine,
+//!    collision-free cell path (coverage plans are expanded) preceded by the
+//!    lead-in from the start, then the boundary pass unless turned off, then
+//!    metre waypoints;
+//! 3. **evaluate**: the contract's metrics of the final path, and the
+//!    coverage of the planner's own path before the boundary pass;
+//! 4. **outputs**: the path CSV, pictures and JSON report ([`write_outputs`]).
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::Instant;
+
+use oxcover_grid::{Cell, Coverability, DiscRobot, OccupancyGrid, Point, components4};
+use oxcover_planners::{
+    BoundaryRoute, CoverageProblem, PlanOutput, Planner, PlannerOptions, Start, registry,
+};
+use serde::Serialize;
+
+use crate::error::{Error, Result};
+use crate::metrics::{Evaluation, MetricParams, evaluate_problem};
+use crate::path::{cells_to_points, write_csv};
+use crate::render::{Scene, render_to_file};
+use crate::report::{BoundaryStats, PlanParameters, PlanReport, metric_rows};
+
+/// A registered planner, as `oxcover planners` lists it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct PlannerInfo {
+    /// Name used on the command line.
+    pub name: &'static str,
+    /// Whether it promises to cover every coverage cell.
+    pub complete: bool,
+    /// One-line description with its source.
+    pub summary: &'static str,
+}
+
+/// Every planner `plan --planner` accepts.
+#[must_use]
+pub fn planners() -> Vec<PlannerInfo> {
+    registry()
+        .map(|p| PlannerInfo {
+            name: p.name(),
+            complete: p.complete(),
+            summary: p.summary(),
+        })
+        .collect()
+}
+
+/// The planner `name` with `options`, for the command line.
+///
+/// # Errors
+/// [`Error::Argument`] naming `--planner` and listing the known names (with
+/// a pointer to `explore` for the sensor-based planner); an option the
+/// planner does not take ([`oxcover_planners::Error::OptionNotTaken`]).
+pub fn planner(name: &str, options: &PlannerOptions) -> Result<Arc<dyn Planner>> {
+    oxcover_planners::build(name, options).map_err(|e| match e {
+        oxcover_planners::Error::UnknownPlanner(_) => Error::Argument {
+            name: "--planner",
+            value: name.to_string(),
+            expected: format!(
+                "one of: {}",
+                registry().map(|p| p.name()).collect::<Vec<_>>().join(", ")
+            ),
+        },
+        other => other.into(),
+    })
+}
+
+/// What to plan: the planner (with its options), the robot, the start, the
+/// seed and whether the boundary pass runs.
+#[derive(Clone)]
+pub struct PlanRequest {
+    /// The planner, options included.
+    pub planner: Arc<dyn Planner>,
+    /// Robot and tool.
+    pub robot: DiscRobot,
+    /// Where the robot starts (default: the contract's first admissible cell).
+    pub start: Start,
+    /// Seed for randomised planners (recorded for all).
+    pub seed: u64,
+    /// Append the boundary pass. Default on.
+    pub boundary_pass: bool,
+}
+
+impl std::fmt::Debug for PlanRequest {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PlanRequest")
+            .field("planner", &self.planner.name())
+            .field("options", &self.planner.options())
+            .field("robot", &self.robot)
+            .field("start", &self.start)
+            .field("seed", &self.seed)
+            .field("boundary_pass", &self.boundary_pass)
+            .finish()
+    }
+}
+
+impl PlanRequest {
+    /// A request for the registered planner `name` with its default options
+    /// and the contract's defaults for a map of `resolution` (robot radius 0,
+    /// tool radius half a cell, first admissible cell, seed 0, boundary pass on).
+    ///
+    /// # Errors
+    /// As [`planner`].
+    pub fn new(name: &str, resolution: f64) -> Result<Self> {
+        Ok(Self::with_planner(
+            planner(name, &PlannerOptions::new())?,
+            resolution,
+        ))
+    }
+
+    /// A request for any planner value, with the contract's defaults.
+    #[must_use]
+    pub fn with_planner(planner: Arc<dyn Planner>, resolution: f64) -> Self {
+        Self {
+            planner,
+            robot: DiscRobot::cell_sized(resolution),
+            start: Start::First,
+            seed: 0,
+            boundary_pass: true,
+        }
+    }
+
+    /// The same request for another robot and tool.
+    #[must_use]
+    pub fn robot(mut self, robot: DiscRobot) -> Self {
+        self.robot = robot;
+        self
+    }
+
+    /// The same request from another start.
+    #[must_use]
+    pub fn start(mut self, start: Start) -> Self {
+        self.start = start;
+        self
+    }
+
+    /// The same request with the boundary pass on or off.
+    #[must_use]
+    pub fn boundary_pass(mut self, on: bool) -> Self {
+        self.boundary_pass = on;
+        self
+    }
+
+    /// The coverage problem this request poses on `map`.
+    ///
+    /// # Errors
+    /// Bad radii or start ([`oxcover_grid::Error`]).
+    pub fn problem(&self, map: &OccupancyGrid) -> Result<CoverageProblem> {
+        Ok(CoverageProblem::new(map, self.robot, self.start)?)
+    }
+}
+
+/// The result of [`plan`].
+#[derive(Clone, Debug)]
+pub struct PlanOutcome {
+    /// Metre waypoints (the path file).
+    pub points: Vec<Point>,
+    /// The fine cell path behind them (for a metre plan: its lead-in and the
+    /// boundary pass only).
+    pub cells: Vec<Cell>,
+    /// Scores of the final path.
+    pub evaluation: Evaluation,
+    /// Coverage of the planner's own path, before the boundary pass.
+    pub coverage_without_boundary_pass: f64,
+    /// What the boundary pass did, if it ran.
+    pub boundary: Option<BoundaryRoute>,
+    /// Fine cells per coverage-cell side.
+    pub coarse_block: usize,
+    /// Planning time in milliseconds (problem, planner, boundary pass).
+    pub plan_ms: f64,
+}
+
+impl PlanOutcome {
+    /// The rows of a plan for tables and legends: its metrics with the
+    /// coverage before the boundary pass second.
+    #[must_use]
+    pub fn rows(&self) -> Vec<(String, String)> {
+        let mut rows = metric_rows(&self.evaluation.metrics);
+        rows.insert(
+            1,
+            (
+                "coverage (no boundary pass)".into(),
+                format!("{:.4}", self.coverage_without_boundary_pass),
+            ),
+        );
+        rows
+    }
+
+    /// The `plan --report` object of this plan of `request` on `map`
+    /// (named `map_name`).
+    #[must_use]
+    pub fn report(&self, map: &OccupancyGrid, map_name: &str, request: &PlanRequest) -> PlanReport {
+        let start = self.points.first().copied().unwrap_or_else(Point::origin);
+        let parameters = PlanParameters {
+            map: map_name.to_string(),
+            robot_radius: request.robot.robot_radius,
+            tool_radius: request.robot.tool_radius,
+            resolution: map.resolution(),
+            start: [start.x, start.y],
+            seed: request.seed,
+            boundary_pass: request.boundary_pass,
+            sweep_angle_deg: request.planner.options().sweep_angle_deg,
+            coverage_cell_m: self.coarse_block as f64 * map.resolution(),
+        };
+        PlanReport {
+            planner: request.planner.name().to_string(),
+            parameters,
+            plan_ms: self.plan_ms,
+            coverage_without_boundary_pass: self.coverage_without_boundary_pass,
+            boundary: self.boundary.as_ref().map(|b| BoundaryStats {
+                pending_cells: b.pending,
+                anchors: b.anchors,
+                appended_cells: b.cells.len(),
+            }),
+            metrics: self.evaluation.metrics.clone(),
+        }
+    }
+}
+
+/// Plans a coverage path on `map`.
+///
+/// Coverage and fine cell paths are expanded to collision-free fine paths;
+/// a metre path is used as given after the lead-in from the start, so its
+/// collisions are whatever the planner made (the metrics count them).
+///
+/// # Errors
+/// Bad radii or start ([`oxcover_grid::Error`]), a planner's refusal
+/// ([`oxcover_planners::Error::TooLarge`]) or an internal fault.
+pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
+    let t0 = Instant::now();
+    let problem = request.problem(map)?;
+    plan_problem(&problem, request, t0)
+}
+
+/// Plans on a problem already made (its making counted from `t0`).
+fn plan_problem(
+    problem: &CoverageProblem,
+    request: &PlanRequest,
+    t0: Instant,
+) -> Result<PlanOutcome> {
+    let frame = problem.frame();
+    let output = request.planner.plan(&problem.input(request.seed))?;
+    let (planned, tail) = match &output {
+        PlanOutput::Metres(points) => {
+            let first = points.first().and_then(|p| frame.cell_at(p));
+            (
+                first.into_iter().collect::<Vec<_>>(),
+                points.get(1..).unwrap_or_default().to_vec(),
+            )
+        }
+        _ => (problem.expand(&output)?, Vec::new()),
+    };
+    let mut cells = problem.lead_in(planned.first().copied())?;
+    cells.extend(planned.into_iter().skip(1));
+    let mut prefix = Vec::new();
+    if let Some(s) = problem.start_point() {
+        if frame.cell_center(problem.start_cell()) != s {
+            prefix.push(s);
+        }
+    }
+    // A metre plan continues after the lead-in's cells; the boundary pass
+    // then starts from the cell of its last point.
+    let to_points = |cells: &[Cell], extra: &[Cell]| {
+        let mut pts = prefix.clone();
+        pts.extend(cells_to_points(frame, cells));
+        pts.extend(tail.iter().copied());
+        pts.extend(cells_to_points(frame, extra));
+        pts
+    };
+    let raw_points = to_points(&cells, &[]);
+    let mut plan_time = t0.elapsed();
+    let params = MetricParams::default();
+    let raw = evaluate_problem(frame, problem.cells().clone(), &raw_points, &params);
+    let t1 = Instant::now();
+    let mut extra = Vec::new();
+    let boundary = if request.boundary_pass {
+        let last_cell = raw_points
+            .last()
+            .and_then(|p| frame.cell_at(p))
+            .filter(|&c| problem.plannable()[c]);
+        let end = last_cell
+            .or_else(|| cells.last().copied())
+            .unwrap_or(problem.start_cell());
+        let route = problem.boundary_pass(&raw_points, end)?;
+        // The pass starts from `end`'s centre; a metre plan may stop elsewhere
+        // in that cell, so go to the centre first (a move inside one cell).
+        let off_centre = raw_points.last() != Some(&frame.cell_center(end));
+        if off_centre && route.pending > 0 {
+            extra.push(end);
+        }
+        extra.extend_from_slice(&route.cells);
+        Some(route)
+    } else {
+        None
+    };
+    let points = to_points(&cells, &extra);
+    cells.extend(extra);
+    plan_time += t1.elapsed();
+    let evaluation = evaluate_problem(frame, problem.cells().clone(), &points, &params);
+    Ok(PlanOutcome {
+        points,
+        cells,
+        evaluation,
+        coverage_without_boundary_pass: raw.metrics.coverage,
+        boundary,
+        coarse_block: problem.block(),
+        plan_ms: plan_time.as_secs_f64() * 1e3,
+    })
+}
+
+/// Where to write a plan's outputs (each optional).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Outputs<'a> {
+    /// Path file (CSV, header `x,y`).
+    pub csv: Option<&'a Path>,
+    /// SVG picture.
+    pub svg: Option<&'a Path>,
+    /// PNG picture.
+    pub png: Option<&'a Path>,
+    /// JSON report.
+    pub report: Option<&'a Path>,
+}
+
+/// Writes the CSV, pictures and report of a plan of `request` on `map`
+/// (named `map_name`); returns the files written.
+///
+/// # Errors
+/// [`Error::Write`] naming the file that could not be written.
+pub fn write_outputs(
+    map: &OccupancyGrid,
+    map_name: &str,
+    request: &PlanRequest,
+    outcome: &PlanOutcome,
+    out: &Outputs<'_>,
+) -> Result<Vec<PathBuf>> {
+    let mut written = Vec::new();
+    if let Some(p) = out.csv {
+        write_csv(p, &outcome.points)?;
+        written.push(p.to_path_buf());
+    }
+    let ev = &outcome.evaluation;
+    let title = format!("{} - {}", short_name(map_name), request.planner.name());
+    let scene = Scene {
+        map,
+        path: &outcome.points,
+        planned: None,
+        covered: Some(&ev.covered),
+        coverable: Some(&ev.problem.coverable),
+        title,
+        overlay: None,
+        rows: metric_rows(&ev.metrics),
+    };
+    for p in [out.svg, out.png].into_iter().flatten() {
+        render_to_file(&scene, p)?;
+        written.push(p.to_path_buf());
+    }
+    if let Some(p) = out.report {
+        let report = outcome.report(map, map_name, request);
+        let json = serde_json::to_string_pretty(&report)
+            .map_err(|e| Error::Internal(format!("report serialisation failed: {e}")))?;
+        std::fs::write(p, json + "\n").map_err(|e| Error::write(p, e))?;
+        written.push(p.to_path_buf());
+    }
+    Ok(written)
+}
+
+/// Hints about what a plan leaves out: free cells it cannot cover, and a
+/// default start stranded in a small component (common in SLAM maps, whose
+/// first free cell is often a speck of noise).
+pub fn coverage_notes(
+    map: &OccupancyGrid,
+    problem: &Coverability,
+    default_start: bool,
+) -> Vec<String> {
+    let mut notes = Vec::new();
+    let free = map.counts().free;
+    let coverable = problem.coverable_count();
+    if coverable < free {
+        notes.push(format!(
+            "{} of {free} free cells are not coverable (not reachable from the start, or too close to obstacles for this robot and tool) and are not counted",
+            free - coverable
+        ));
+    }
+    let comps = components4(&problem.admissible);
+    let mine = comps.labels[problem.start];
+    if let Some(big) = comps.largest() {
+        let (ours, theirs) = (
+            comps.sizes[mine as usize - 1],
+            comps.sizes[big as usize - 1],
+        );
+        if big != mine && theirs > 2 * ours {
+            if let Some(cell) = problem
+                .admissible
+                .true_cells()
+                .find(|&c| comps.labels[c] == big)
+            {
+                let p = map.frame().cell_center(cell);
+                let how = if default_start {
+                    "the default start (first admissible cell)"
+                } else {
+                    "the start"
+                };
+                notes.push(format!(
+                    "{how} lies in a region of {ours} admissible cells; the largest has {theirs}: try --start {},{}",
+                    metres(p.x),
+                    metres(p.y)
+                ));
+            }
+        }
+    }
+    notes
+}
+
+/// A coordinate in metres with at most six decimals, trailing zeros dropped.
+fn metres(v: f64) -> String {
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.to_string() }
+}
+
+/// The file name of a path, for titles.
+#[must_use]
+pub fn short_name(path: &str) -> String {
+    Path::new(path)
+        .file_name()
+        .map_or_else(|| path.to_string(), |n| n.to_string_lossy().into_owned())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use oxcover_grid::random::rectangles;
+    use oxcover_planners::PlannerInput;
+
+    #[test]
+    fn unknown_planner_lists_the_known_ones() {
+        let e = planner("nope", &PlannerOptions::new())
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(
+            e.contains("--planner is `nope`") && e.contains("grid-cover"),
+            "{e}"
+        );
+    }
+
+    /// A planner that returns a metre path: the start's centre, then a point
+    /// half a cell to its east.
+    struct Metric;
+
+    impl Planner for Metric {
+        fn name(&self) -> &'static str {
+            "metric"
+        }
+        fn complete(&self) -> bool {
+            false
+        }
+        fn summary(&self) -> &'static str {
+            "test"
+        }
+        fn plan(&self, input: &PlannerInput<'_>) -> oxcover_planners::Result<PlanOutput> {
+            let rep = input.coarse.representative(input.start).unwrap_or_default();
+            let p = input.frame.cell_center(rep);
+            Ok(PlanOutput::Metres(vec![p, Point::new(p.x + 0.5, p.y)]))
+        }
+    }
+
+    #[test]
+    fn metre_plans_pass_through_and_get_the_boundary_pass() {
+        let (map, _) = oxcover_grid::io::parse_ascii("....\n....").unwrap();
+        let out = plan(&map, &PlanRequest::with_planner(Arc::new(Metric), 1.0)).unwrap();
+        assert_eq!(out.points[0], Point::new(0.5, 1.5));
+        assert_eq!(out.points[1], Point::new(1.0, 1.5));
+        let m = &out.evaluation.metrics;
+        assert_eq!((m.coverage, m.collisions), (1.0, 0));
+        assert!(out.coverage_without_boundary_pass < 1.0);
+    }
+
+    #[test]
+    fn wide_tool_plan_is_complete_and_collision_free() {
+        let base = rectangles(80, 60, 6, 12, 11);
+        let map = OccupancyGrid::new(base.cells().clone(), 0.05, Point::new(-1.0, 2.0));
+        let req = PlanRequest::new("dtc", 0.05)
+            .unwrap()
+            .robot(DiscRobot::new(0.15, 0.15).unwrap());
+        let out = plan(&map, &req).unwrap();
+        let m = &out.evaluation.metrics;
+        assert_eq!(m.collisions, 0);
+        assert_eq!(m.coverage, 1.0);
+        assert!(out.coverage_without_boundary_pass < 1.0);
+        assert_eq!(out.coarse_block, 6);
+        let raw = plan(&map, &req.boundary_pass(false)).unwrap();
+        assert_eq!(
+            raw.evaluation.metrics.coverage,
+            out.coverage_without_boundary_pass
+        );
+    }
+}
