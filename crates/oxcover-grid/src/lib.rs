@@ -58,5 +58,5 @@ pub use coverable::{Coverability, DiscRobot, coverable_cells};
 pub use error::{Error, Result};
 pub use frame::MapFrame;
 pub use grid::{Cell, Dir4, Dir8, Grid};
-pub use math::{Point, Real, Vector};
+pub use math::{Point, Pose, Real, Vector};
 pub use occupancy::{Occupancy, OccupancyCounts, OccupancyGrid};

@@ -13,6 +13,39 @@ pub type Point = nalgebra::Point2<Real>;
 /// A displacement in the map frame, in metres.
 pub type Vector = nalgebra::Vector2<Real>;
 
+/// A planar pose: position in metres, heading in radians (counter-clockwise
+/// from the x axis), in the map frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Pose {
+    /// x (m).
+    pub x: Real,
+    /// y (m).
+    pub y: Real,
+    /// Heading (rad).
+    pub theta: Real,
+}
+
+impl Pose {
+    /// A pose.
+    #[must_use]
+    pub const fn new(x: Real, y: Real, theta: Real) -> Self {
+        Self { x, y, theta }
+    }
+
+    /// The position.
+    #[must_use]
+    pub fn position(&self) -> Point {
+        Point::new(self.x, self.y)
+    }
+
+    /// Euclidean distance between the positions.
+    #[must_use]
+    pub fn distance(&self, other: &Self) -> Real {
+        (self.x - other.x).hypot(self.y - other.y)
+    }
+}
+
 /// Builds a [`Point`] from its coordinates.
 #[must_use]
 pub fn point(x: Real, y: Real) -> Point {

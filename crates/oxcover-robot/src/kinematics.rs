@@ -11,31 +11,7 @@
 
 use crate::error::{Result, positive};
 
-/// A planar pose: position in metres, heading in radians (counter-clockwise
-/// from the x axis).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Pose {
-    /// x (m).
-    pub x: f64,
-    /// y (m).
-    pub y: f64,
-    /// Heading (rad).
-    pub theta: f64,
-}
-
-impl Pose {
-    /// A pose.
-    #[must_use]
-    pub const fn new(x: f64, y: f64, theta: f64) -> Self {
-        Self { x, y, theta }
-    }
-
-    /// Euclidean distance between the positions.
-    #[must_use]
-    pub fn distance(&self, other: &Self) -> f64 {
-        (self.x - other.x).hypot(self.y - other.y)
-    }
-}
+pub use oxcover_grid::Pose;
 
 /// `a` wrapped into `(−π, π]`.
 #[must_use]

@@ -189,6 +189,21 @@ pub struct Camera {
 }
 
 impl Camera {
+    /// Checks a camera read from a file: at least one pixel wide and high.
+    ///
+    /// # Errors
+    /// [`crate::Error::BadParameter`] naming `camera`.
+    pub fn check(&self) -> crate::Result<()> {
+        if self.width == 0 || self.height == 0 {
+            return Err(crate::Error::BadParameter {
+                name: "camera",
+                value: format!("{}x{}", self.width, self.height),
+                expected: "a camera at least one pixel wide and high",
+            });
+        }
+        Ok(())
+    }
+
     /// The world floor point seen at raw pixel `(u, v)` by a robot at
     /// `(x, y, ω)`; `None` on or above the horizon.
     #[must_use]
@@ -211,6 +226,7 @@ impl Camera {
 
 /// A 320×240 camera with barrel distortion, 0.3 m up, focal 220 px (for tests).
 #[cfg(test)]
+/// A calibrated 320 × 240 camera for tests.
 pub(crate) fn test_camera() -> Camera {
     Camera {
         width: 320,

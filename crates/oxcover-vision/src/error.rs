@@ -15,6 +15,38 @@ pub enum Error {
         /// What went wrong.
         message: String,
     },
+    /// A file could not be read.
+    #[error("{path}: cannot read: {message}")]
+    Read {
+        /// The file.
+        path: String,
+        /// The operating system's reason.
+        message: String,
+    },
+    /// A line of a text file (the poses CSV) is malformed.
+    #[error("{path}: line {line}: {message}")]
+    Line {
+        /// The file.
+        path: String,
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// An image is not the camera's size.
+    #[error(
+        "{width}x{height} pixels, expected {camera_width}x{camera_height} pixels, the camera's size"
+    )]
+    ImageSize {
+        /// The image's width.
+        width: u32,
+        /// The image's height.
+        height: u32,
+        /// The camera's width.
+        camera_width: u32,
+        /// The camera's height.
+        camera_height: u32,
+    },
     /// A parameter is out of range.
     #[error("{name} is `{value}`, expected {expected}")]
     BadParameter {
@@ -29,3 +61,16 @@ pub enum Error {
 
 /// Shorthand for results of this crate.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// `value` if it is finite and `> 0`, else [`Error::BadParameter`] naming it.
+pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::BadParameter {
+            name,
+            value: value.to_string(),
+            expected: "a finite number above 0",
+        })
+    }
+}

@@ -36,13 +36,16 @@ pub mod mapping;
 pub mod occupancy;
 pub mod profile;
 pub mod synthetic;
+pub mod views;
 
 pub use calibration::{Fit, FloorPair, calibrate_distortion, calibrate_projection};
 pub use camera::{Camera, Distortion, Projection};
 pub use error::{Error, Result};
 pub use mapping::{
-    Fusion, RgbImage, Scores, fuse, learn_profile, on_floor, readings, score, seen_region, to_map,
+    Fusion, MappingConfig, RgbImage, Scores, fuse, learn_profile, on_floor, readings, score,
+    seen_region, to_map,
 };
 pub use occupancy::{LogOddsGrid, Visibility, accumulated, bayes, with_visibility};
 pub use profile::{Profile, hsv};
 pub use synthetic::{Lighting, Rendered, Seen, SyntheticScene};
+pub use views::{Mapper, View, extent, grid_frame, read_views};

@@ -15,7 +15,7 @@
 //! or the map gives these labels in the paper; the synthetic camera's
 //! ground truth here).
 
-use oxcover_grid::{Grid, MapFrame, Occupancy, OccupancyGrid, Point};
+use oxcover_grid::{Grid, MapFrame, Occupancy, OccupancyGrid, Point, Pose};
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
@@ -31,6 +31,63 @@ use crate::synthetic::{Rendered, Seen};
 /// would otherwise outvote every other view of the cell.
 pub const READING_FLOOR: f64 = 0.05;
 
+/// Cells fused below this probability of being occupied are free.
+pub const FREE_BELOW: f64 = 0.35;
+/// Cells fused above this probability of being occupied are occupied.
+pub const OCCUPIED_ABOVE: f64 = 0.65;
+/// The largest grid a run builds, in cells.
+pub const MAX_CELLS: f64 = 50_000_000.0;
+
+/// How views become a map.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MappingConfig {
+    /// Farthest floor distance read from an image, in metres.
+    pub range: f64,
+    /// How visibility is accumulated along rays from the camera.
+    pub visibility: Visibility,
+    /// How visibility enters the grid.
+    pub fusion: Fusion,
+    /// Free below this probability of being occupied ([`FREE_BELOW`]).
+    pub free_below: f64,
+    /// Occupied above this probability ([`OCCUPIED_ABOVE`]); unknown between.
+    pub occupied_above: f64,
+}
+
+impl Default for MappingConfig {
+    /// 3 m range, product visibility, the paper's fusion, the thresholds above.
+    fn default() -> Self {
+        Self {
+            range: 3.0,
+            visibility: Visibility::Product,
+            fusion: Fusion::Paper,
+            free_below: FREE_BELOW,
+            occupied_above: OCCUPIED_ABOVE,
+        }
+    }
+}
+
+impl MappingConfig {
+    /// The configuration, checked.
+    ///
+    /// # Errors
+    /// [`Error::BadParameter`] naming `--range` or the thresholds.
+    pub fn checked(self) -> Result<Self> {
+        crate::error::positive("--range", self.range)?;
+        let in_unit = |v: f64| (0.0..=1.0).contains(&v);
+        if !(in_unit(self.free_below)
+            && in_unit(self.occupied_above)
+            && self.free_below <= self.occupied_above)
+        {
+            return Err(Error::BadParameter {
+                name: "thresholds",
+                value: format!("{} / {}", self.free_below, self.occupied_above),
+                expected: "0 <= free_below <= occupied_above <= 1",
+            });
+        }
+        Ok(self)
+    }
+}
+
 /// An RGB image.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct RgbImage {
@@ -43,6 +100,16 @@ pub struct RgbImage {
 }
 
 impl RgbImage {
+    /// An image of one colour.
+    #[must_use]
+    pub fn filled(width: u32, height: u32, rgb: [u8; 3]) -> Self {
+        Self {
+            width,
+            height,
+            rgb: vec![rgb; width as usize * height as usize],
+        }
+    }
+
     /// Reads a PNG (grey, grey with alpha, RGB or RGBA; alpha ignored).
     ///
     /// # Errors
@@ -169,31 +236,30 @@ pub enum Fusion {
     Discounted,
 }
 
-/// Fuses one image into `grid`, with visibility accumulated by `mode` and
-/// entered by `fusion`.
-#[allow(clippy::too_many_arguments)]
+/// Fuses one image taken at `robot` into `grid`: its readings within
+/// `config.range`, visibility accumulated by `config.visibility` and
+/// entered by `config.fusion` ([`crate::Mapper`] runs this per view).
 pub fn fuse(
     grid: &mut LogOddsGrid,
     camera: &Camera,
     profile: &Profile,
     image: &RgbImage,
-    robot: (f64, f64, f64),
-    range: f64,
-    mode: Visibility,
-    fusion: Fusion,
+    robot: Pose,
+    config: &MappingConfig,
 ) {
     let frame = *grid.frame();
-    let seen = readings(&frame, camera, profile, image, robot, range);
+    let robot = (robot.x, robot.y, robot.theta);
+    let seen = readings(&frame, camera, profile, image, robot, config.range);
     let eye = camera
         .projection
         .to_world(robot, (camera.projection.x_cam, camera.projection.y_cam));
-    let acc = accumulated(&seen, &frame, Point::new(eye.0, eye.1), mode);
+    let acc = accumulated(&seen, &frame, Point::new(eye.0, eye.1), config.visibility);
     for c in acc.cells() {
         let (p, v) = (seen[c], acc[c]);
         if p.is_nan() || v.is_nan() {
             continue;
         }
-        let p = match fusion {
+        let p = match config.fusion {
             Fusion::Paper => 1.0 - (1.0 - p) * v,
             Fusion::Discounted => 0.5 + (p - 0.5) * v,
         };
@@ -302,6 +368,7 @@ pub fn seen_region(truth: &OccupancyGrid, rendered: &[Rendered]) -> Grid<bool> {
 mod tests {
     use super::*;
     use crate::camera::{Distortion, Projection};
+    use crate::occupancy::Visibility;
     use crate::synthetic::{Lighting, SyntheticScene};
 
     #[test]
@@ -369,12 +436,19 @@ mod tests {
         let region = seen_region(&truth, &rendered);
         for mode in [Visibility::Product, Visibility::Bayes] {
             let build = |fusion: Fusion| {
-                let mut grid = LogOddsGrid::new(*truth.frame());
-                for (img, &p) in rendered.iter().zip(&poses) {
-                    let img = RgbImage::from(img);
-                    fuse(&mut grid, &cam, &profile, &img, p, 3.0, mode, fusion);
+                let config = crate::MappingConfig {
+                    visibility: mode,
+                    fusion,
+                    ..crate::MappingConfig::default()
+                };
+                let mut mapper =
+                    crate::Mapper::new(&cam, &profile, *truth.frame(), config).unwrap();
+                for (img, &(x, y, t)) in rendered.iter().zip(&poses) {
+                    mapper
+                        .add(&RgbImage::from(img), Pose::new(x, y, t))
+                        .unwrap();
                 }
-                score(&to_map(&grid, 0.35, 0.65), &truth, Some(&region))
+                score(&mapper.map(), &truth, Some(&region))
             };
             // The paper's fusion: hidden cells read occupied, which keeps
             // obstacles but also darkens free floor seen past them.

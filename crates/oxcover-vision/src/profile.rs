@@ -66,6 +66,28 @@ impl Profile {
         })
     }
 
+    /// Checks a profile read from a file: 1 to 256 bins per axis and
+    /// `bins³` free and occupied counts.
+    ///
+    /// # Errors
+    /// [`Error::BadParameter`] naming `profile`.
+    pub fn check(&self) -> Result<()> {
+        let cells = (1..=256).contains(&self.bins).then(|| self.bins.pow(3));
+        if cells.is_none_or(|n| self.free.len() != n || self.occ.len() != n) {
+            return Err(Error::BadParameter {
+                name: "profile",
+                value: format!(
+                    "{} bins, {} free and {} occ counts",
+                    self.bins,
+                    self.free.len(),
+                    self.occ.len()
+                ),
+                expected: "1 to 256 bins per axis and bins³ free and occ counts",
+            });
+        }
+        Ok(())
+    }
+
     /// The bin of a reading: `⌈n·x⌉` per axis (0 in the first bin).
     #[must_use]
     pub fn index(&self, (h, s, v): (f64, f64, f64)) -> usize {

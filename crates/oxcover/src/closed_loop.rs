@@ -18,6 +18,7 @@ use rand_chacha::ChaCha8Rng;
 
 use crate::error::{Error, Result};
 use crate::metrics::{Evaluation, MetricParams, evaluate};
+use crate::report::{SimulateReport, metric_rows};
 
 /// Which tracking controller.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -82,6 +83,53 @@ pub struct Run {
     pub tracking_rms: f64,
     /// Largest tracking error (m).
     pub tracking_max: f64,
+}
+
+impl Run {
+    /// Duration of the run (s): the last sample's time.
+    #[must_use]
+    pub fn duration_s(&self) -> f64 {
+        self.samples.last().map_or(0.0, |s| s.t)
+    }
+
+    /// Energy used (J): the last sample's.
+    #[must_use]
+    pub fn energy_j(&self) -> f64 {
+        self.samples.last().map_or(0.0, |s| s.energy)
+    }
+
+    /// The `simulate --report` object of this run of a plan by `planner`
+    /// executed as `cfg` says; `planned_coverage` is the plan's own coverage.
+    #[must_use]
+    pub fn report(&self, planner: &str, cfg: &ClosedLoop, planned_coverage: f64) -> SimulateReport {
+        SimulateReport {
+            planner: planner.to_string(),
+            controller: match cfg.controller {
+                ControllerKind::Kanayama => "kanayama",
+                ControllerKind::Klancar => "klancar",
+            }
+            .to_string(),
+            dt: cfg.dt,
+            odometry_noise: cfg.odometry_noise,
+            duration_s: self.duration_s(),
+            energy_j: self.energy_j(),
+            tracking_rms_m: self.tracking_rms,
+            tracking_max_m: self.tracking_max,
+            planned_coverage,
+            metrics: self.evaluation.metrics.clone(),
+        }
+    }
+
+    /// The table rows of a run: its metrics, then duration, energy and tracking errors.
+    #[must_use]
+    pub fn rows(&self) -> Vec<(String, String)> {
+        let mut rows = metric_rows(&self.evaluation.metrics);
+        rows.push(("duration_s".into(), format!("{:.1}", self.duration_s())));
+        rows.push(("energy_j".into(), format!("{:.0}", self.energy_j())));
+        rows.push(("tracking_rms_m".into(), format!("{:.4}", self.tracking_rms)));
+        rows.push(("tracking_max_m".into(), format!("{:.4}", self.tracking_max)));
+        rows
+    }
 }
 
 /// Executes the metre path `points` on `map` and scores the result for the

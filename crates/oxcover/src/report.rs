@@ -1,4 +1,5 @@
-//! The JSON report of `plan --report` and the human-readable metric rows.
+//! The JSON reports of `plan --report` and `simulate --report`, and the
+//! human-readable metric rows.
 //!
 //! The report is the metrics object of `eval` plus the planner's name, its
 //! parameters, `plan_ms`, and the coverage before the boundary pass (so paper
@@ -58,6 +59,33 @@ pub struct PlanReport {
     /// What the boundary pass did (null when off).
     pub boundary: Option<BoundaryStats>,
     /// The metrics of the final path (flattened into the object).
+    #[serde(flatten)]
+    pub metrics: Metrics,
+}
+
+/// The `simulate --report` object: the metrics of the EXECUTED trajectory
+/// and how it was executed.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SimulateReport {
+    /// Planner name.
+    pub planner: String,
+    /// Tracking controller (`kanayama` or `klancar`).
+    pub controller: String,
+    /// Control step (s).
+    pub dt: f64,
+    /// Odometry noise `σ`.
+    pub odometry_noise: f64,
+    /// Duration of the run (s).
+    pub duration_s: f64,
+    /// Energy used (J).
+    pub energy_j: f64,
+    /// Root-mean-square tracking error (m).
+    pub tracking_rms_m: f64,
+    /// Largest tracking error (m).
+    pub tracking_max_m: f64,
+    /// Coverage of the plan itself, for comparison.
+    pub planned_coverage: f64,
+    /// The metrics of the executed trajectory (flattened into the object).
     #[serde(flatten)]
     pub metrics: Metrics,
 }

@@ -21,14 +21,14 @@ use std::path::Path;
 use oxcover::pipeline::{PlanRequest, plan, planner};
 use oxcover::planners::PlannerOptions;
 use oxcover::render::{Scene, render_to_file};
-use oxcover_grid::{Cell, DiscRobot, Grid, OccupancyGrid};
+use oxcover_grid::{Cell, DiscRobot, Grid, OccupancyGrid, Pose};
 use oxcover_robot::World;
 use oxcover_vision::calibration::{FloorPair, calibrate_distortion, calibrate_projection};
-use oxcover_vision::occupancy::{LogOddsGrid, Visibility};
+use oxcover_vision::occupancy::Visibility;
 use oxcover_vision::synthetic::{Lighting, Rendered, SplitMix, SyntheticScene};
 use oxcover_vision::{
-    Camera, Distortion, Fusion, Profile, Projection, RgbImage, Scores, fuse, learn_profile,
-    on_floor, readings, score, seen_region, to_map,
+    Camera, Distortion, Fusion, Mapper, MappingConfig, Profile, Projection, RgbImage, Scores,
+    learn_profile, on_floor, readings, score, seen_region,
 };
 use rayon::prelude::*;
 
@@ -337,21 +337,17 @@ pub fn run() -> anyhow::Result<()> {
         (Visibility::Product, Fusion::Discounted),
         (Visibility::Bayes, Fusion::Discounted),
     ] {
-        let mut grid = LogOddsGrid::new(*truth.frame());
-        for (img, &p) in images.iter().zip(&poses) {
-            let img = RgbImage::from(img);
-            fuse(
-                &mut grid,
-                &cal.camera,
-                &profile,
-                &img,
-                p,
-                range,
-                mode,
-                fusion,
-            );
+        let config = MappingConfig {
+            range,
+            visibility: mode,
+            fusion,
+            ..MappingConfig::default()
+        };
+        let mut mapper = Mapper::new(&cal.camera, &profile, *truth.frame(), config)?;
+        for (img, &(x, y, theta)) in images.iter().zip(&poses) {
+            mapper.add(&RgbImage::from(img), Pose::new(x, y, theta))?;
         }
-        let map = to_map(&grid, 0.35, 0.65);
+        let map = mapper.map();
         let seen = score(&map, &truth, Some(&region));
         let all = score(&map, &truth, None);
         let mut plans = Vec::new();

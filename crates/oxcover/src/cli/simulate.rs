@@ -7,7 +7,7 @@ use clap::ValueEnum;
 use oxcover::grid::Point;
 use oxcover::pipeline::{plan, short_name};
 use oxcover::render::{Scene, render_to_file};
-use oxcover::report::{metric_rows, table};
+use oxcover::report::table;
 use oxcover::{Error, Result};
 
 use super::plan::{PlanArgs, map_and_request};
@@ -94,14 +94,8 @@ pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
         .map(|s| Point::new(s.pose.x, s.pose.y))
         .collect();
     let ev = &run.evaluation;
-    let last = run.samples.last().copied();
-    let duration = last.map_or(0.0, |s| s.t);
-    let energy = last.map_or(0.0, |s| s.energy);
-    let mut rows = metric_rows(&ev.metrics);
-    rows.push(("duration_s".into(), format!("{duration:.1}")));
-    rows.push(("energy_j".into(), format!("{energy:.0}")));
-    rows.push(("tracking_rms_m".into(), format!("{:.4}", run.tracking_rms)));
-    rows.push(("tracking_max_m".into(), format!("{:.4}", run.tracking_max)));
+    let duration = run.duration_s();
+    let rows = run.rows();
     let scene = Scene {
         map: &map,
         path: &executed,
@@ -121,26 +115,12 @@ pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
         written.push(f.to_path_buf());
     }
     if let Some(f) = &p.report {
-        let mut v = serde_json::to_value(&ev.metrics)
-            .map_err(|e| Error::Internal(format!("report serialisation failed: {e}")))?;
-        if let Some(o) = v.as_object_mut() {
-            o.insert("planner".into(), p.planner.clone().into());
-            o.insert(
-                "controller".into(),
-                format!("{:?}", a.controller).to_lowercase().into(),
-            );
-            o.insert("dt".into(), a.dt.into());
-            o.insert("odometry_noise".into(), a.odometry_noise.into());
-            o.insert("duration_s".into(), duration.into());
-            o.insert("energy_j".into(), energy.into());
-            o.insert("tracking_rms_m".into(), run.tracking_rms.into());
-            o.insert("tracking_max_m".into(), run.tracking_max.into());
-            o.insert(
-                "planned_coverage".into(),
-                outcome.evaluation.metrics.coverage.into(),
-            );
-        }
-        let json = serde_json::to_string_pretty(&v)
+        let report = run.report(
+            request.planner.name(),
+            &cfg,
+            outcome.evaluation.metrics.coverage,
+        );
+        let json = serde_json::to_string_pretty(&report)
             .map_err(|e| Error::Internal(format!("report serialisation failed: {e}")))?;
         std::fs::write(f, json + "\n").map_err(|e| Error::write(f, e))?;
         written.push(f.clone());
