@@ -1,5 +1,5 @@
 //! The `demir2018` reproduction's worlds, and the target on the two
-//! worlds seed 003's own implementation failed on (a concave obstacle and
+//! worlds Demir 2018's own implementation failed on (a concave obstacle and
 //! two stacked obstacles): coverage of at least 99 %, every true critical
 //! point found, no collision.
 

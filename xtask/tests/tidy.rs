@@ -325,3 +325,34 @@ fn planner_inputs_are_built_in_their_home() {
         }
     }
 }
+
+/// Papers are named by author and year (Siamantas 2010, Zhang & Yan 2008,
+/// Lee 2011, Demir 2018, Pavlíček 2002), never by the label of their file
+/// in `../shared/seeds`, which reads like the random `seed` everywhere.
+#[test]
+fn papers_are_named_by_author_and_year() {
+    let label = concat!("seed", " 00");
+    let mut files = sources();
+    for dir in ["docs", "fixtures/worlds"] {
+        let mut stack = vec![root().join(dir)];
+        while let Some(d) = stack.pop() {
+            for e in std::fs::read_dir(&d).expect("readable dir").flatten() {
+                let p = e.path();
+                if p.is_dir() {
+                    stack.push(p);
+                } else if p.extension().is_some_and(|x| x == "md" || x == "ron") {
+                    files.push(p);
+                }
+            }
+        }
+    }
+    files.push(root().join("README.md"));
+    for f in files {
+        let text = std::fs::read_to_string(&f).expect("readable file");
+        assert!(
+            !text.to_lowercase().contains(label),
+            "{}: name the paper by author and year, not `{label}…`",
+            f.display()
+        );
+    }
+}

@@ -1,4 +1,4 @@
-//! Border expansion roads (Pavlicek, Kulich, Preucil et al., seed 004).
+//! Border expansion roads (Pavlíček, Kulich, Přeučil et al. 2002).
 //!
 //! Every obstacle and the outer border are grown into the free space in steps
 //! of one lane width `s`; after each step the boundary of what is left is a set

@@ -4,15 +4,15 @@
 //!
 //! - [`quadtree`]: quadtree decomposition (QTD) of a binary matrix into uniform
 //!   blocks, padded to a power of two, with O(log n) incremental updates that
-//!   report which blocks changed (seed 000's per-step decomposition).
-//! - [`rectangular`]: the rectangular decomposition of Zhang & Yan (seed 001):
+//!   report which blocks changed (Siamantas 2010's per-step decomposition).
+//! - [`rectangular`]: the rectangular decomposition of Zhang & Yan 2008:
 //!   real and virtual square nodes, the interleaving network of connectible
 //!   nodes, and rectangles grown next to blocked neighbours.
 //! - [`slices`]: a grid cut by parallel lanes at any angle into free
 //!   intervals, and cellular decompositions built from them with their
 //!   adjacency graphs: [`boustrophedon`](mod@boustrophedon) (Choset & Pignon: cut at critical
 //!   events) and [`trapezoidal`](mod@trapezoidal) (also cut where a side bends).
-//! - [`border_expansion`](mod@border_expansion): seed 004's roads, the boundaries of successive
+//! - [`border_expansion`](mod@border_expansion): Pavlíček 2002's roads, the boundaries of successive
 //!   offsets of the obstacles, with safety levels and the road graph.
 //!
 //! ```

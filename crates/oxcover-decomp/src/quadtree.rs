@@ -1,8 +1,8 @@
-//! Quadtree decomposition, QTD (Samet 1980; used by seed 000, Siamantas et al. 2010).
+//! Quadtree decomposition, QTD (Samet 1980; used by Siamantas et al. 2010).
 //!
 //! A binary matrix is split into four equal quadrants, recursively, until every
 //! block holds only one value. The matrix is padded to `2^k × 2^k` with `true`
-//! cells (blocked), as seed 000 assumes `n = 2^k`. The decomposition is the set
+//! cells (blocked), as Siamantas 2010 assumes `n = 2^k`. The decomposition is the set
 //! of *maximal uniform nodes*: nodes whose cells all share a value and whose
 //! parent does not.
 //!
@@ -36,7 +36,7 @@ impl Block {
         self.size * self.size
     }
 
-    /// The upper-left cell (the block's position in seed 000).
+    /// The upper-left cell (the block's position in Siamantas 2010).
     #[must_use]
     pub fn position(&self) -> Cell {
         Cell::new(self.row, self.col)
@@ -135,7 +135,7 @@ impl QuadTree {
         out
     }
 
-    /// Blocks whose value is `false` (in seed 000: unvisited free space).
+    /// Blocks whose value is `false` (in Siamantas 2010: unvisited free space).
     #[must_use]
     pub fn free_blocks(&self) -> Vec<Block> {
         let mut v = self.blocks();

@@ -1,4 +1,4 @@
-//! Rectangular decomposition (Zhang & Yan 2008, seed 001).
+//! Rectangular decomposition (Zhang & Yan 2008).
 //!
 //! The environment is divided into square cells of the robot's size; each is a
 //! *node* at its centre, *real* when it holds free space and *virtual* when it

@@ -7,7 +7,7 @@
 //! boundary bends. On a grid a straight wall at an angle moves in steps of
 //! whole cells, so "bends" are second differences of an end above
 //! [`BEND_CELLS`]; below that the side counts as straight. Hence many more,
-//! smaller cells than boustrophedon, which is the point of seed 004's Fig. 8.
+//! smaller cells than boustrophedon, which is the point of Pavlíček 2002's Fig. 8.
 
 use oxcover_grid::Grid;
 

@@ -1,4 +1,4 @@
-//! Coarse-to-fine CIDT, CFCIDT (Lee et al. 2011, seed 002), made exact.
+//! Coarse-to-fine CIDT, CFCIDT (Lee et al. 2011), made exact.
 //!
 //! The paper keeps a *block map* (each block = `k × k` cells) next to the fine
 //! map, updated incrementally as cells are explored; it runs CIDT on the blocks

@@ -1,4 +1,4 @@
-//! Constrained inverse distance transform, CIDT (Lee et al. 2011, seed 002).
+//! Constrained inverse distance transform, CIDT (Lee et al. 2011).
 //!
 //! A wavefront from the robot that stops as soon as no cell of the current front
 //! can beat the best target found so far, instead of labelling the whole map.

@@ -1,5 +1,5 @@
 //! Rotating a map about its centre (nearest-neighbour resampling), for
-//! rotation studies such as seed 004's claim that boustrophedon depends on the
+//! rotation studies such as Pavlíček 2002's claim that boustrophedon depends on the
 //! map's orientation and border expansion does not.
 
 use crate::grid::Grid;

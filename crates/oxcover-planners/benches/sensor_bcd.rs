@@ -1,4 +1,4 @@
-//! The sensor-based planner `sensor-bcd` (seed 003) on three `demir2018`
+//! The sensor-based planner `sensor-bcd` (Demir 2018) on three `demir2018`
 //! worlds (`fixtures/worlds/demir2018`: one polygon, the concave obstacle,
 //! the flat), default settings (0.2 m robot, 0.25 m tool, 180 rays), the
 //! whole online run: every scan, follow step and route. The offline

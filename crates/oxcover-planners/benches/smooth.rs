@@ -1,4 +1,4 @@
-//! The `smooth` planner (seed 002) on the three bundled `lee2011` rooms
+//! The `smooth` planner (Lee 2011) on the three bundled `lee2011` rooms
 //! (`fixtures/maps/lee2011`, 122×102 cells at 0.05 m), body radius 0.17 m
 //! and brush radius 0.16 m as in the reproduction, planner call only (the
 //! coverage problem and the coverage grid are built once, outside the

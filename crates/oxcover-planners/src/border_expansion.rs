@@ -1,4 +1,4 @@
-//! Border-expansion coverage (Pavlicek et al., seed 004, §5).
+//! Border-expansion coverage (Pavlíček et al. 2002, §5).
 //!
 //! The roads of [`oxcover_decomp::border_expansion()`] (successive offsets of the
 //! obstacles and the outer border, one coverage cell apart, from an exact
@@ -99,7 +99,7 @@ impl Planner for BorderExpansionPlanner {
         true
     }
     fn summary(&self) -> &'static str {
-        "border expansion (Pavlicek et al. 2002, seed 004): closed roads offset from every border, outer road first"
+        "border expansion (Pavlicek et al. 2002): closed roads offset from every border, outer road first"
     }
     fn plan(&self, input: &PlannerInput<'_>) -> Result<PlanOutput> {
         Ok(PlanOutput::Metres(self.plan_detailed(input)?.points))

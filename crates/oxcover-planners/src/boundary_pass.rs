@@ -1,7 +1,7 @@
 //! The boundary pass: cover what a plan left uncovered, typically the strips
 //! along walls and obstacles that a coarse coverage grid cannot reach.
 //!
-//! Seed 004 (Pavlíček et al.) proposes "an additional run of the system along
+//! Pavlíček et al. 2002 propose "an additional run of the system along
 //! obstacle boundaries". This module does it for any planner's output:
 //!
 //! 1. Score the plan's polyline exactly as the metrics do (samples every

@@ -1,4 +1,4 @@
-//! Full DTC (seed 000's comparison baseline): DTC run with every coverage cell
+//! Full DTC (Siamantas 2010's comparison baseline): DTC run with every coverage cell
 //! as the goal, keeping the shortest and the longest complete path.
 //!
 //! Siamantas et al. derived it "in order to compare it with the proposed
@@ -96,7 +96,7 @@ impl Planner for FullDtc {
         true
     }
     fn summary(&self) -> &'static str {
-        "DTC towards every possible goal, keeping the shortest path (seed 000's baseline; O(n^2))"
+        "DTC towards every possible goal, keeping the shortest path (Siamantas 2010's baseline; O(n^2))"
     }
     fn plan(&self, input: &PlannerInput<'_>) -> Result<PlanOutput> {
         Ok(PlanOutput::Coverage(

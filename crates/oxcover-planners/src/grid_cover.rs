@@ -1,4 +1,4 @@
-//! Grid_Cover (Siamantas, Gatsis & Tzes 2010, seed 000).
+//! Grid_Cover (Siamantas, Gatsis & Tzes 2010).
 //!
 //! Visited cells become soft obstacles. At every step the unvisited space is
 //! decomposed by a quadtree (QTD), and for each feasible move `X_ij` (an

@@ -9,19 +9,19 @@
 //! | name | module | source | complete |
 //! |---|---|---|---|
 //! | `dtc` | [`dtc`] | Zelinsky et al. 1993 | yes |
-//! | `full-dtc` | [`full_dtc`] | seed 000's baseline: DTC for every goal | yes |
-//! | `grid-cover` | [`grid_cover`] | Siamantas, Gatsis & Tzes 2010 (seed 000) | yes |
-//! | `rect-priority` | [`rect_priority`] | Zhang & Yan 2008 (seed 001) | no (paper: > 90 %) |
+//! | `full-dtc` | [`full_dtc`] | Siamantas 2010's baseline: DTC for every goal | yes |
+//! | `grid-cover` | [`grid_cover`] | Siamantas, Gatsis & Tzes 2010 | yes |
+//! | `rect-priority` | [`rect_priority`] | Zhang & Yan 2008 | no (paper: > 90 %) |
 //! | `optimal` | [`optimal`] | exact minimum moves (frontier DP), coverage grid ≤ 16 wide | yes |
 //! | `stc` | [`stc`] | Gabriely & Rimon 2001, full mega-cells only | no |
 //! | `spiral-stc` | [`stc`] | Gabriely & Rimon 2002, with partly blocked mega-cells | yes |
 //! | `bsa` | [`bsa`] | Gonzalez et al. 2005 | yes |
-//! | `boustrophedon` | [`sweep`] | Choset & Pignon 1997 (seed 004) | yes |
-//! | `trapezoidal` | [`sweep`] | slab decomposition (seed 004, Fig. 8) | yes |
-//! | `border-expansion` | [`border_expansion`] | Pavlicek et al. 2002 (seed 004) | yes |
-//! | `smooth` | [`smooth`] | Lee et al. 2011 (seed 002): spiral, wall following, CFCIDT, PSO-tuned Bézier virtual-wall paths | yes |
+//! | `boustrophedon` | [`sweep`] | Choset & Pignon 1997 (Pavlíček 2002) | yes |
+//! | `trapezoidal` | [`sweep`] | slab decomposition (Pavlíček 2002, Fig. 8) | yes |
+//! | `border-expansion` | [`border_expansion`] | Pavlicek et al. 2002 | yes |
+//! | `smooth` | [`smooth`] | Lee et al. 2011: spiral, wall following, CFCIDT, PSO-tuned Bézier virtual-wall paths | yes |
 //!
-//! Beside the registry, [`sensor_bcd`] is the online planner of seed 003:
+//! Beside the registry, [`sensor_bcd`] is the online planner of Demir 2018:
 //! it covers an unknown polygonal world ([`oxcover_robot::World`]) with range
 //! rays, growing a boustrophedon decomposition and its Reeb graph as it goes
 //! (`oxcover explore`). It needs a world to sense, not a grid, so it is not a
@@ -33,7 +33,7 @@
 //! of plannable fine cells. The sweep and border-expansion planners return
 //! metre paths whose every segment is checked cell by cell against the
 //! plannable mask (exact traversal), so they too never cross a wall. [`boundary_pass()`] covers what a plan left uncovered
-//! along walls (seed 004's extra run along obstacle boundaries).
+//! along walls (Pavlíček 2002's extra run along obstacle boundaries).
 //!
 //! ```
 //! use oxcover_grid::{io::parse_ascii, DiscRobot};

@@ -1,4 +1,4 @@
-//! The exact minimum number of moves, MNP (seed 000's yardstick `PI_opt = MNP / ANP`).
+//! The exact minimum number of moves, MNP (Siamantas 2010's yardstick `PI_opt = MNP / ANP`).
 //!
 //! The shortest open walk from the start that visits every coverage cell,
 //! 4-connected. A covering walk traverses a multiset `H` of grid edges that is
@@ -21,7 +21,7 @@
 //! parity, dead ends) reach that length are pruned. Finding none proves the
 //! heuristic walk optimal.
 //! Cost O(cells · states), states bounded by `3^(w+1)` times the non-crossing
-//! partitions of the frontier: 75 ms per map on average for seed 000's 8×8
+//! partitions of the frontier: 75 ms per map on average for Siamantas 2010's 8×8
 //! maps (0.8 s at worst), heavy beyond a width of about 12.
 //! The walk is recovered from the DP's back-pointers by Hierholzer's algorithm.
 //!
@@ -71,7 +71,7 @@ type StateMap = HashMap<u128, u32, BuildHasherDefault<StateHasher>>;
 pub struct Optimal {
     /// DP states the search may create before giving up (deterministic
     /// budget; memory is about 32 bytes per state). Default 10 million: the
-    /// hardest of seed 000's 8×8 maps needs about 4 million.
+    /// hardest of Siamantas 2010's 8×8 maps needs about 4 million.
     pub max_states: usize,
     /// Optional wall-clock budget; results then depend on the machine.
     pub time_budget: Option<Duration>,

@@ -1,4 +1,4 @@
-//! Particle swarm optimisation as in seed 002's Algorithm 1 (Lee et al. 2011).
+//! Particle swarm optimisation as in Algorithm 1 of Lee et al. 2011.
 //!
 //! A particle is a 4-vector `x` with velocity `v`. Each round every particle
 //! is scored, the global best is the best of the previous global best and the

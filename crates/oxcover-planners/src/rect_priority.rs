@@ -1,4 +1,4 @@
-//! Priority coverage over a rectangular decomposition (Zhang & Yan 2008, seed 001).
+//! Priority coverage over a rectangular decomposition (Zhang & Yan 2008).
 //!
 //! **Global planning** walks the interleaving network of the
 //! [`RectangularDecomposition`]: from the current node it looks at the eight

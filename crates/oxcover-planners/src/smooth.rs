@@ -1,4 +1,4 @@
-//! Smooth coverage (Lee, Baek, Choi & Oh 2011; seed 002).
+//! Smooth coverage (Lee, Baek, Choi & Oh 2011).
 //!
 //! The seed's behaviours, on the plannable grid (the planner knows the map;
 //! "sensing an obstacle" is leaving the plannable cells with a clearance):
@@ -201,7 +201,7 @@ impl Planner for Smooth {
         true
     }
     fn summary(&self) -> &'static str {
-        "Lee et al. 2011 (seed 002): spiral, wall following, CFCIDT and PSO-tuned quintic Bezier virtual-wall paths"
+        "Lee et al. 2011: spiral, wall following, CFCIDT and PSO-tuned quintic Bezier virtual-wall paths"
     }
     fn plan(&self, input: &PlannerInput<'_>) -> Result<PlanOutput> {
         Ok(PlanOutput::Metres(self.plan_detailed(input)?.points))

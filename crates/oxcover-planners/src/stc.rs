@@ -14,7 +14,7 @@
 //! - [`StcVariant::Plain`] (`stc`): a mega-cell is kept only when its four
 //!   subcells are coverage cells linked to each other around the mega-cell; a
 //!   tree edge needs both crossing moves. Partially occupied mega-cells are
-//!   dropped, so coverage is lost next to obstacles (seed 002's 84 %); the
+//!   dropped, so coverage is lost next to obstacles (Lee 2011's 84 %); the
 //!   planner says it is not complete. If the start's mega-cell is dropped the
 //!   path first goes to the nearest kept subcell.
 //! - [`StcVariant::Full`] (`spiral-stc`): a mega-cell is kept when any of its

@@ -1,5 +1,5 @@
 //! Back-and-forth coverage of a cellular decomposition: the `boustrophedon`
-//! and `trapezoidal` planners (seed 004, §4; Choset & Pignon 1997).
+//! and `trapezoidal` planners (Pavlíček 2002, §4; Choset & Pignon 1997).
 //!
 //! 1. **Decompose** the plannable cells with lanes one coverage cell apart
 //!    (the tool diameter rounded down to whole cells, so lanes leave no gap)
@@ -169,10 +169,10 @@ impl Planner for Sweep {
     fn summary(&self) -> &'static str {
         match self.decomposition {
             Decomposition::Boustrophedon => {
-                "boustrophedon decomposition (Choset & Pignon 1997; seed 004): lanes per cell, 2-opt cell order, best of 12 angles"
+                "boustrophedon decomposition (Choset & Pignon 1997; Pavlíček 2002): lanes per cell, 2-opt cell order, best of 12 angles"
             }
             Decomposition::Trapezoidal => {
-                "trapezoidal (slab) decomposition (seed 004, Fig. 8): lanes per cell, 2-opt cell order, best of 12 angles"
+                "trapezoidal (slab) decomposition (Pavlíček 2002, Fig. 8): lanes per cell, 2-opt cell order, best of 12 angles"
             }
         }
     }

@@ -1,4 +1,4 @@
-//! Quintic Bézier segments and splines (seed 002, eq. 13).
+//! Quintic Bézier segments and splines (Lee 2011, eq. 13).
 //!
 //! A segment `Q(u) = Σ_{k=0}^{5} C(5,k) (1−u)^{5−k} u^k P_k`, `u ∈ [0, 1]`,
 //! is built from its end points, end tangents `T` and end second
@@ -31,7 +31,7 @@ pub struct QuinticBezier {
 
 impl QuinticBezier {
     /// The segment from `p0` to `p1` with end tangents `t0`, `t1` and end
-    /// second derivatives `a0`, `a1` (seed 002's control-point rules).
+    /// second derivatives `a0`, `a1` (Lee 2011's control-point rules).
     #[must_use]
     pub fn from_ends(p0: Vec2, p1: Vec2, t0: Vec2, t1: Vec2, a0: Vec2, a1: Vec2) -> Self {
         let c1 = add(p0, scale(t0, 0.2));

@@ -1,4 +1,4 @@
-//! Critical-point detection from three range rays (seed 003, §2.1,
+//! Critical-point detection from three range rays (Demir 2018, §2.1,
 //! eqs. 1–3), for slices `x = const`.
 //!
 //! The robot fires a *lagging*, a *centre* and a *leading* ray at a boundary,

@@ -29,13 +29,13 @@
 //!   ray-cast with parry2d, with exact clearances and exact critical points.
 //! - [`random_world`](mod@random_world): seeded random worlds of convex and concave polygons
 //!   with guaranteed passages, for property tests.
-//! - [`critical_point`]: seed 003's three-ray critical-point detector (the
+//! - [`critical_point`]: Demir 2018's three-ray critical-point detector (the
 //!   dot-product test of its eqs. 1–3, with tolerances), classifying IN/OUT
 //!   and convex/concave.
 //! - [`wall_follow`]: PID wall following on the lateral range.
 //! - [`bezier`]: quintic Bézier segments from end points, tangents and second
-//!   derivatives (seed 002, eq. 13) and C² splines through points.
-//! - [`spiral`]: the Archimedean spiral `r = (R/π)|θ|` of seed 002's spiral
+//!   derivatives (Lee 2011, eq. 13) and C² splines through points.
+//! - [`spiral`]: the Archimedean spiral `r = (R/π)|θ|` of Lee 2011's spiral
 //!   path, turns one tool diameter apart.
 //!
 //! Angles are radians, counter-clockwise from the map's x axis; lengths are

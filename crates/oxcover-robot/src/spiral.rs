@@ -1,4 +1,4 @@
-//! The Archimedean spiral of seed 002's spiral path: `r = (R/π)|θ|`, so that
+//! The Archimedean spiral of Lee 2011's spiral path: `r = (R/π)|θ|`, so that
 //! successive turns lie `2R` apart (one tool diameter, `R` the tool radius).
 //! In the robot's start frame (origin at the start, x along its heading):
 //! `x = r cos θ`, `y = r sin θ`.

@@ -1,4 +1,4 @@
-//! Calibration by least squares (seed 004, §2): the distortion parameters
+//! Calibration by least squares (Pavlíček 2002, §2): the distortion parameters
 //! from points on straight lines, the projection parameters from image
 //! points paired with measured floor points. Both are solved by
 //! Levenberg–Marquardt ([`levenberg_marquardt`]) on nalgebra, with

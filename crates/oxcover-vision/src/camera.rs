@@ -1,4 +1,4 @@
-//! The camera model of seed 004 (§2): radial distortion about `(u_c, v_c)`,
+//! The camera model of Pavlíček 2002 (§2): radial distortion about `(u_c, v_c)`,
 //! the projection of image points onto the floor, and the rotation into the
 //! world frame.
 //!

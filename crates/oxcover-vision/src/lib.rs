@@ -1,7 +1,7 @@
 //! # oxcover-vision
 //!
-//! Occupancy grids from a single floor-facing camera (issue 7; Pavlicek,
-//! Mázl, Štěpán & Přeučil 2002, seed 004 §2).
+//! Occupancy grids from a single floor-facing camera (Pavlíček, Mázl,
+//! Štěpán & Přeučil 2002, §2).
 //!
 //! - [`camera`]: the paper's camera model: radial distortion about
 //!   `(u_c, v_c)` with `p₁..p₃` (and its inverse), the floor projection with

@@ -1,4 +1,4 @@
-//! From camera images to an occupancy grid (seed 004, §2.1–2.2), and how
+//! From camera images to an occupancy grid (Pavlíček 2002, §2.1–2.2), and how
 //! good the grid is against the truth.
 //!
 //! For every image and every grid cell within `range` of the camera, the

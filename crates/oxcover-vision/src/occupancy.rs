@@ -1,4 +1,4 @@
-//! Occupancy grid updates (seed 004, §2.1–2.2): the paper's Bayes formula,
+//! Occupancy grid updates (Pavlíček 2002, §2.1–2.2): the paper's Bayes formula,
 //! kept internally as log-odds, and the accumulation of visibility along
 //! rays from the robot.
 //!

@@ -1,4 +1,4 @@
-//! HSV probability profiles (seed 004, §2.1): `free` and `occ` count
+//! HSV probability profiles (Pavlíček 2002, §2.1): `free` and `occ` count
 //! matrices over a discretised HSV cube, learned from labelled pixels, and
 //! `P(R | Occ) = occ / (free + occ)`, or 1 where no sample fell.
 //!

@@ -1,4 +1,4 @@
-//! A picture in the spirit of seed 004's Fig. 8, four panels in a 2×2 grid:
+//! A picture in the spirit of Pavlíček 2002's Fig. 8, four panels in a 2×2 grid:
 //! (a) the trapezoidal and (b) the boustrophedon decomposition of one map,
 //! each cell in its own colour, drawn as the band its lanes sweep; (c) the
 //! boustrophedon adjacency graph (a node at each cell's lane centroid); (d)

@@ -1,4 +1,4 @@
-//! Demir 2018 (seed 003): sensor-based coverage of unknown polygonal worlds
+//! Demir 2018: sensor-based coverage of unknown polygonal worlds
 //! with a boustrophedon (Morse) decomposition grown online.
 //!
 //! The worlds are `fixtures/worlds/demir2018/*.ron`: the seed's six (one
@@ -160,7 +160,7 @@ fn page(results: &[Measured]) -> String {
     let cfg = Config::default();
     let keep = cfg.robot_radius + cfg.margin;
     let mut md = String::new();
-    md += "# Demir 2018 (seed 003): sensor-based coverage of unknown polygonal worlds\n\n";
+    md += "# Demir 2018: sensor-based coverage of unknown polygonal worlds\n\n";
     md += "Command: `cargo xtask reproduce demir2018` (release; about 15 s on two cores). Worlds: `fixtures/worlds/demir2018/*.ron`. One world by hand: `cargo run --release -- explore fixtures/worlds/demir2018/fig14_concave.ron --svg f.svg --graph g.json --out path.csv`.\n\n";
     let _ = writeln!(
         md,

@@ -1,4 +1,4 @@
-//! Lee, Baek, Choi & Oh 2011 (seed 002): smooth coverage against BSA and
+//! Lee, Baek, Choi & Oh 2011: smooth coverage against BSA and
 //! Spiral-STC, executed in closed loop.
 //!
 //! Three 6 m × 5 m rooms with irregular obstacles, described in
@@ -345,7 +345,7 @@ fn figure(
 }
 
 fn page(worlds: &[World], results: &[Measured], details: &[SmoothDetails]) -> String {
-    let mut md = String::from("# Lee et al. 2011 (seed 002): smooth coverage in closed loop\n\n");
+    let mut md = String::from("# Lee et al. 2011: smooth coverage in closed loop\n\n");
     md += "Command: `cargo xtask reproduce lee2011` (release). Environments: `fixtures/worlds/lee2011/*.ron`, rasterised to the ROS maps in `fixtures/maps/lee2011/` (0.05 m cells). Robot: `fixtures/robots/floor_cleaner.ron` (Create 2 geometry, DC-motor energy model; values and their sources in the file), body radius 0.17 m, brush radius 0.16 m. Reference limits: 0.3 m/s, 0.5 m/s², 1.5 rad/s, 3 rad/s², corners above 20° stop and turn in place. Controller: Klancar et al. (ζ = 0.7, g = 10), 50 Hz, no odometry noise. Ten seeded starts per environment, the same for every planner; no boundary pass. Every quantity is measured on the EXECUTED trajectory.\n\n";
     md += "Quantities (the seed's): coverage = covered / coverable cells; normalized time = run time / covered area; average velocity = executed length / run time; energy efficiency = covered area / energy.\n\n";
     md += "## All runs (3 environments × 10 starts), beside the paper\n\n";

@@ -1,4 +1,4 @@
-//! Pavlicek et al. 2002 (seed 004), §2: occupancy grids from a single
+//! Pavlicek et al. 2002, §2: occupancy grids from a single
 //! floor-facing camera, end to end on a synthetic camera, then coverage
 //! planned on the built map.
 //!
@@ -483,7 +483,7 @@ fn page(
     built: &[Built],
 ) -> String {
     let mut md = String::new();
-    md += "# Pavlicek et al. 2002 (seed 004), §2: occupancy grids from one camera\n\n";
+    md += "# Pavlicek et al. 2002, §2: occupancy grids from one camera\n\n";
     md += "Command: `cargo xtask reproduce pavlicek2002-camera` (release). Everything is synthetic (`oxcover_vision::synthetic`): a level pinhole camera behind a barrel lens, walls taller than the camera, a textured floor, lighting and pixel noise, with the ground truth of every pixel.\n\n";
     md += "## 1. Calibration\n\n";
     let _ = writeln!(

@@ -1,4 +1,4 @@
-//! Siamantas, Gatsis & Tzes 2010 (seed 000), Section 4 and Fig. 2.
+//! Siamantas, Gatsis & Tzes 2010, Section 4 and Fig. 2.
 //!
 //! 100 random 8×8 grids with 15 obstacles and 4-connected free space, random
 //! start, fixed seeds. Per map: the exact minimum number of moves (MNP, proven
@@ -176,7 +176,7 @@ pub fn run() -> anyhow::Result<()> {
     let total_s = t0.elapsed().as_secs_f64();
     let out = dir()?;
     let mut md = String::from(
-        "# Reproduction: Siamantas, Gatsis & Tzes 2010 (seed 000)\n\n\
+        "# Reproduction: Siamantas, Gatsis & Tzes 2010\n\n\
          *Mobile Robot-Assisted Cellular Environment Coverage*: Grid_Cover, full DTC, and the\n\
          performance index `PI_opt = MNP / ANP` (minimum moves / the algorithm's moves).\n\n\
          Command (writes this page and its figure):\n\n```sh\ncargo xtask reproduce siamantas2010\n```\n\n",

@@ -1,4 +1,4 @@
-//! Siamantas, Gatsis & Tzes 2010 (seed 000), Fig. 3c: a differential-drive
+//! Siamantas, Gatsis & Tzes 2010, Fig. 3c: a differential-drive
 //! robot tracking the Grid_Cover path with a nonlinear controller.
 //!
 //! The grid is map 0 of the `siamantas2010` experiment (8 × 8, 15 obstacles,
@@ -84,9 +84,7 @@ pub fn run() -> anyhow::Result<()> {
     let (map, reference, runs) = runs()?;
     let out = dir()?;
     let name = "siamantas2010_tracking";
-    let mut md = String::from(
-        "# Siamantas et al. 2010 (seed 000), Fig. 3c: tracking the Grid_Cover path\n\n",
-    );
+    let mut md = String::from("# Siamantas et al. 2010, Fig. 3c: tracking the Grid_Cover path\n\n");
     md += "Command: `cargo xtask reproduce siamantas2010-tracking`. Grid: map 0 of `siamantas2010` (8 × 8, 15 obstacles) with 0.5 m cells. Reference: the Grid_Cover path through the cell centres, timed at 0.3 m/s, 0.5 m/s², 0.52 rad/s (3 rad/s² in turns); corners stop and turn in place. Robot: the bundled floor cleaner's drive (`fixtures/robots/floor_cleaner.ron`: wheel base 0.235 m, wheel speed ≤ 0.5 m/s, wheel acceleration ≤ 1 m/s²), disc radius 0.17 m, tool covering one 0.5 m cell. Controllers at 50 Hz: Klancar et al. (ζ = 0.7, g = 40) and Kanayama (K = 1, 4, 4). The seed reports only that the robot \"followed the reference path with acceptable accuracy\" (no figure values), so there is no number to compare against.\n\n";
     md += "| run | RMS error cm | max error cm | duration s | length m | coverage | collisions | energy J |\n|---|---:|---:|---:|---:|---:|---:|---:|\n";
     for ((label, _, _), r) in RUNS.iter().zip(&runs) {

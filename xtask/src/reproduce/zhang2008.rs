@@ -1,4 +1,4 @@
-//! Zhang & Yan 2008 (seed 001), Section 3: coverage ratio and repetition ratio
+//! Zhang & Yan 2008, Section 3: coverage ratio and repetition ratio
 //! of the rectangular-decomposition planner over a set of maps, beside
 //! Grid_Cover and DTC on the same maps.
 //!
@@ -170,7 +170,7 @@ pub fn run() -> anyhow::Result<()> {
     let results = run_all(&cases)?;
     let out = dir()?;
     let mut md = String::from(
-        "# Reproduction: Zhang & Yan 2008 (seed 001)\n\n\
+        "# Reproduction: Zhang & Yan 2008\n\n\
          *Robot coverage algorithm under rectangular decomposition environment*: global planning over the\n\
          rectangle nodes by the priority `P = C·T·L`, local templates, dead-node escape.\n\n\
          Command (writes this page and its figure):\n\n```sh\ncargo xtask reproduce zhang2008\n```\n\n",

@@ -1,7 +1,7 @@
 //! The simulated robot: a disc that moves, scans its ring of range rays after
 //! every move, and drives only on what those rays tell it.
 //!
-//! Motion primitives (seed 003's states):
+//! Motion primitives (Demir 2018's states):
 //!
 //! - [`Body::lap`], *motion to boundary*: straight along the slice until the
 //!   disc, grown by the clearance margin, would touch a sensed point;

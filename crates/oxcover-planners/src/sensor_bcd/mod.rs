@@ -1,6 +1,6 @@
 //! `sensor-bcd`: online coverage of an unknown polygonal world by a disc
 //! robot with range rays, growing a boustrophedon (Morse) decomposition and
-//! its Reeb graph as it covers (seed 003; Acar & Choset 2002).
+//! its Reeb graph as it covers (Demir 2018; Acar & Choset 2002).
 //!
 //! The robot knows nothing of the world but what its ring of rays returns
 //! (seeded noise optional) and its own position (perfect odometry, as in the
@@ -16,7 +16,7 @@
 //!
 //! **Cells closed by cycles.** Acar & Choset's cycle algorithm covers a cell
 //! with a forward lapping phase along one boundary and a return along the
-//! other, so no critical point on either side is missed; seed 003 skipped it
+//! other, so no critical point on either side is missed; Demir 2018 skipped it
 //! and lost the space around concave obstacles and between stacked ones. We
 //! apply the same idea to each slab between two neighbouring slices: the
 //! robot goes once round the whole boundary of the slab's free component
@@ -36,7 +36,7 @@
 //! instead of `w`.
 //!
 //! **Critical points** are the follower's turning points along x (the
-//! boundary's normal parallel to the sweep), classified by seed 003's
+//! boundary's normal parallel to the sweep), classified by Demir 2018's
 //! three-ray test fired along x at the turning point
 //! ([`oxcover_robot::ThreeRayDetector`]); when the test does not give a
 //! class that agrees with the follower about which way the boundary goes on,

@@ -1,5 +1,5 @@
 //! The nonlinear tracking controller of Klancar, Matko & Blazic (2005),
-//! "Mobile robot control on a reference path" (seed 000's Fig. 3c; after de
+//! "Mobile robot control on a reference path" (Siamantas 2010's Fig. 3c; after de
 //! Luca, Oriolo & Vendittelli): with `k = 2ζ√(ω_r² + g v_r²)`,
 //! `v = v_r cos e_θ + k e_x`, `ω = ω_r + k e_θ + g v_r sinc(e_θ) e_y`.
 //! The `sinc` form keeps the command bounded and exact as `e_θ → 0`.

@@ -64,7 +64,7 @@ pub(crate) fn cmd_planners() {
     }
     let _ = writeln!(
         out,
-        "\n{:<w$}  {:<8}  online sensor-based boustrophedon coverage of unknown polygonal worlds (seed 003): `oxcover explore WORLD.ron`",
+        "\n{:<w$}  {:<8}  online sensor-based boustrophedon coverage of unknown polygonal worlds (Demir 2018): `oxcover explore WORLD.ron`",
         "sensor-bcd", "yes"
     );
 }

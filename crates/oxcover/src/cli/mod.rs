@@ -63,7 +63,7 @@ enum Command {
     /// Writes the executed path (CSV with a state column), the graph (JSON or
     /// RON), the rasterised map, pictures and a JSON report.
     Explore(ExploreArgs),
-    /// Build an occupancy grid from floor-camera images (seed 004): calibrated
+    /// Build an occupancy grid from floor-camera images (Pavlíček 2002): calibrated
     /// camera and HSV profile (RON), PNG images with robot poses (CSV
     /// image,x,y,theta), written as a ROS map that `plan` reads.
     MapFromCamera(MapFromCameraArgs),
