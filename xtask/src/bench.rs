@@ -167,7 +167,7 @@ fn smooth_section(root: &Path) -> anyhow::Result<()> {
 fn sensor_bcd_section(root: &Path) -> anyhow::Result<()> {
     let group = root.join("target/criterion/sensor_bcd");
     let mut md = format!(
-        "Measured by `cargo xtask bench --only sensor_bcd` (which runs `cargo bench -p oxcover-planners --bench sensor_bcd`) on {}. `sensor-bcd` is the whole online run (scans of 180 rays, following, cycles, routes over its own map) on the world; `boustrophedon` is the offline planner given the world's 2.5 cm raster, planner call only, the reference of the same run.\n\n| world | boustrophedon ms | sensor-bcd ms | sensor-bcd / boustrophedon |\n|---|---:|---:|---:|\n",
+        "Measured by `cargo xtask bench --only sensor_bcd` (which runs `cargo bench -p oxcover --bench sensor_bcd`) on {}. `sensor-bcd` is the whole online run (scans of 180 rays, following, cycles, routes over its own map) on the world; `boustrophedon` is the offline planner given the world's 2.5 cm raster, planner call only, the reference of the same run.\n\n| world | boustrophedon ms | sensor-bcd ms | sensor-bcd / boustrophedon |\n|---|---:|---:|---:|\n",
         machine()
     );
     for world in ["fig05_polygon", "fig14_concave", "floor_plan"] {
@@ -220,7 +220,7 @@ pub fn run(no_run: bool, only: Option<&str>) -> anyhow::Result<()> {
     for (name, krate) in [
         ("floorplan", "oxcover-planners"),
         ("smooth", "oxcover-planners"),
-        ("sensor_bcd", "oxcover-planners"),
+        ("sensor_bcd", "oxcover"),
         ("grid_cover", "oxcover-planners"),
         ("wavefront", "oxcover-distance"),
     ] {

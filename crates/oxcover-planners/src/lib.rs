@@ -21,11 +21,8 @@
 //! | `border-expansion` | [`border_expansion`] | Pavlicek et al. 2002 | yes |
 //! | `smooth` | [`smooth`] | Lee et al. 2011: spiral, wall following, CFCIDT, PSO-tuned Bézier virtual-wall paths | yes |
 //!
-//! Beside the registry, [`sensor_bcd`] is the online planner of Demir 2018:
-//! it covers an unknown polygonal world ([`oxcover_robot::World`]) with range
-//! rays, growing a boustrophedon decomposition and its Reeb graph as it goes
-//! (`oxcover explore`). It needs a world to sense, not a grid, so it is not a
-//! [`Planner`].
+//! The online sensor-based planner of Demir 2018 (`sensor-bcd`) needs a
+//! world to sense, not a grid; it lives in `oxcover-world`.
 //!
 //! Planners work on the coverage grid ([`oxcover_grid::CoarseGrid`]; one tool
 //! diameter per cell, the fine grid itself with the default radii) and return
@@ -62,7 +59,6 @@ pub mod pso;
 pub mod rect_priority;
 pub mod registry;
 mod route;
-pub mod sensor_bcd;
 pub mod smooth;
 pub mod stc;
 pub mod sweep;

@@ -17,14 +17,6 @@ pub enum Error {
     /// A robot description file could not be parsed.
     #[error("robot description: {0}")]
     Spec(String),
-    /// A world file could not be read, or describes an impossible world.
-    #[error("{file}: {message}")]
-    World {
-        /// The file (or what the text came from).
-        file: String,
-        /// What is wrong.
-        message: String,
-    },
 }
 
 /// Shorthand for results of this crate.

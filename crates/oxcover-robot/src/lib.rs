@@ -1,7 +1,8 @@
 //! # oxcover-robot
 //!
-//! The robot side of coverage (issue 5, first part): how a differential-drive
-//! robot moves and how it tracks a planned path.
+//! The robot side of coverage: how a differential-drive robot moves, how it
+//! tracks a planned path, what the run costs, and the curves smooth paths
+//! are made of. Worlds and sensing live in `oxcover-world`.
 //!
 //! - [`kinematics`]: the unicycle / differential-drive model ([`DiffDrive`]),
 //!   exact integration of constant `(v, ω)` steps along arcs, wheel speeds,
@@ -9,8 +10,8 @@
 //!   keeps the commanded curvature.
 //! - [`control`]: the [`Controller`] trait, the tracking error in the robot
 //!   frame, and two controllers behind it: [`Kanayama`] (Kanayama et al. 1990)
-//!   and [`Klancar`], the nonlinear controller of Klancar et al. 2005 (seed
-//!   000's Fig. 3c) in its `sinc` form.
+//!   and [`Klancar`], the nonlinear controller of Klancar et al. 2005
+//!   (Siamantas 2010's Fig. 3c) in its `sinc` form.
 //! - [`timing`]: time parametrisation of a metre polyline under speed,
 //!   acceleration and turn-rate limits (stops and turns in place at corners,
 //!   curvature-limited speed on smooth curves): the reference to track.
@@ -20,19 +21,6 @@
 //! - [`energy`]: a DC-motor wheel power model (torque constant, armature
 //!   resistance, rolling resistance, constant electronics load) giving the
 //!   joules of a run, and the RON robot description ([`RobotSpec`]).
-//! - [`geometry`]: a map's obstacles as boxes for ray casting (parry2d,
-//!   kept behind this module).
-//! - [`sensors`]: a ring of range rays with seeded Gaussian noise, cast
-//!   against anything that is a [`RayCaster`].
-//! - [`world`]: polygonal worlds (outer boundary, polygons convex or not,
-//!   discs, rectangles) read from RON, rasterised to occupancy grids,
-//!   ray-cast with parry2d, with exact clearances and exact critical points.
-//! - [`random_world`](mod@random_world): seeded random worlds of convex and concave polygons
-//!   with guaranteed passages, for property tests.
-//! - [`critical_point`]: Demir 2018's three-ray critical-point detector (the
-//!   dot-product test of its eqs. 1–3, with tolerances), classifying IN/OUT
-//!   and convex/concave.
-//! - [`wall_follow`]: PID wall following on the lateral range.
 //! - [`bezier`]: quintic Bézier segments from end points, tangents and second
 //!   derivatives (Lee 2011, eq. 13) and C² splines through points.
 //! - [`spiral`]: the Archimedean spiral `r = (R/π)|θ|` of Lee 2011's spiral
@@ -52,32 +40,18 @@
 
 pub mod bezier;
 pub mod control;
-pub mod critical_point;
 pub mod energy;
 pub mod error;
-pub mod geometry;
 pub mod kinematics;
-pub mod random_world;
-pub mod sensors;
 pub mod simulate;
 pub mod spiral;
 pub mod timing;
-pub mod wall_follow;
-pub mod world;
 
 pub use bezier::{QuinticBezier, spline_derivatives, spline_through};
 pub use control::{Controller, Kanayama, Klancar, Reference, TrackingError};
-pub use critical_point::{Detection, Returns, ThreeRayDetector};
 pub use energy::{EnergyModel, RobotSpec};
 pub use error::{Error, Result};
-pub use geometry::{Obstacles, RayCaster};
 pub use kinematics::{DiffDrive, Pose, wrap_angle};
-pub use random_world::{RandomWorldSpec, random_world};
-pub use sensors::{RangeSensor, Reading};
 pub use simulate::{Sample, simulate};
 pub use spiral::ArchimedeanSpiral;
 pub use timing::{Limits, Timing};
-pub use wall_follow::{Side, WallFollower};
-pub use world::{
-    Convexity, CriticalKind, Event, Outline, Shape, TrueCriticalPoint, World, WorldGeometry,
-};

@@ -12,9 +12,12 @@ pub enum Error {
     /// A map could not be read or a coverage problem could not be built.
     #[error(transparent)]
     Map(#[from] oxcover_grid::Error),
-    /// A world file or robot description could not be used.
+    /// A robot description or motion parameter could not be used.
     #[error(transparent)]
     Robot(#[from] oxcover_robot::Error),
+    /// A world file or the sensor-based planner refused (or failed).
+    #[error(transparent)]
+    World(#[from] oxcover_world::Error),
     /// A camera, profile or image could not be used.
     #[error(transparent)]
     Vision(#[from] oxcover_vision::Error),
@@ -68,7 +71,9 @@ impl Error {
     pub fn exit_code(&self) -> u8 {
         if matches!(
             self,
-            Error::Internal(_) | Error::Planner(oxcover_planners::Error::Internal(_))
+            Error::Internal(_)
+                | Error::Planner(oxcover_planners::Error::Internal(_))
+                | Error::World(oxcover_world::Error::Internal(_))
         ) {
             1
         } else {

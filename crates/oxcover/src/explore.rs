@@ -8,8 +8,8 @@ use std::path::Path;
 use std::time::Instant;
 
 use oxcover_grid::{DiscRobot, OccupancyGrid, Point};
-use oxcover_planners::sensor_bcd::{self, Config, Exploration, ReebGraph, State};
-use oxcover_robot::{Event, TrueCriticalPoint, World, WorldGeometry};
+use oxcover_world::sensor_bcd::{self, Config, Exploration, ReebGraph, State};
+use oxcover_world::{Event, TrueCriticalPoint, World, WorldGeometry};
 use serde::Serialize;
 
 use crate::error::{Error, Result};
@@ -23,10 +23,10 @@ use crate::render::{LegendMark, MarkerShape, Overlay};
 /// stops `(r + δ) / sin(φ/2)` from the apex and its ray lands up to
 /// `(r + δ) cot(φ/2)` away (one `r + δ` for a right angle, two for 53°).
 #[must_use]
-pub fn found_within(kind: oxcover_robot::CriticalKind, keep: f64) -> f64 {
+pub fn found_within(kind: oxcover_world::CriticalKind, keep: f64) -> f64 {
     match kind.convexity {
-        oxcover_robot::Convexity::Convex => keep,
-        oxcover_robot::Convexity::Concave => 2.0 * keep,
+        oxcover_world::Convexity::Convex => keep,
+        oxcover_world::Convexity::Concave => 2.0 * keep,
     }
 }
 

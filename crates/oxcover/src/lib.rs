@@ -27,7 +27,7 @@
 //!
 //! Everything a user needs comes from this crate: the member crates are
 //! re-exported ([`grid`], [`planners`], [`distance`], [`decomp`], [`robot`],
-//! [`vision`]) and the common names are at the root.
+//! [`vision`], [`world`]) and the common names are at the root.
 //!
 //! ```
 //! use oxcover::{parse_ascii, plan, PlanRequest};
@@ -74,3 +74,5 @@ pub use oxcover_planners as planners;
 pub use oxcover_robot as robot;
 /// Camera occupancy mapping ([`oxcover_vision`]).
 pub use oxcover_vision as vision;
+/// Polygonal worlds, range sensing and the sensor-based planner ([`oxcover_world`]).
+pub use oxcover_world as world;

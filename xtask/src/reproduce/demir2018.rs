@@ -22,8 +22,8 @@ use oxcover::planners::{PlannerOptions, Start};
 use oxcover::render::{Scene, render_to_file};
 use oxcover::report::metric_rows;
 use oxcover_grid::{DiscRobot, Point};
-use oxcover_planners::sensor_bcd::Config;
-use oxcover_robot::World;
+use oxcover_world::World;
+use oxcover_world::sensor_bcd::Config;
 use rayon::prelude::*;
 
 use super::dir;
@@ -164,7 +164,7 @@ fn page(results: &[Measured]) -> String {
     md += "Command: `cargo xtask reproduce demir2018` (release; about 15 s on two cores). Worlds: `fixtures/worlds/demir2018/*.ron`. One world by hand: `cargo run --release -- explore fixtures/worlds/demir2018/fig14_concave.ron --svg f.svg --graph g.json --out path.csv`.\n\n";
     let _ = writeln!(
         md,
-        "Robot: a disc of radius {r} m with a tool of radius {t} m (laps {w} m apart, the tool diameter), keeping {d} m beyond its body from what it senses; a ring of {n} range rays of {range} m, no noise (first table) or {noise} mm Gaussian noise (second table). It knows its own position (as in the seed) and nothing of the world. Planner: `sensor-bcd` (`oxcover_planners::sensor_bcd`): lapping along slices x = const with boundary following, critical points from the follower's turning points classified by the seed's three-ray test, an incremental Reeb graph, each slab between two slices closed by one cycle round its boundary (our form of Acar and Choset's cycle algorithm), then travel over the robot's own map to the nearest open end of an uncovered cell.\n",
+        "Robot: a disc of radius {r} m with a tool of radius {t} m (laps {w} m apart, the tool diameter), keeping {d} m beyond its body from what it senses; a ring of {n} range rays of {range} m, no noise (first table) or {noise} mm Gaussian noise (second table). It knows its own position (as in the seed) and nothing of the world. Planner: `sensor-bcd` (`oxcover_world::sensor_bcd`): lapping along slices x = const with boundary following, critical points from the follower's turning points classified by the seed's three-ray test, an incremental Reeb graph, each slab between two slices closed by one cycle round its boundary (our form of Acar and Choset's cycle algorithm), then travel over the robot's own map to the nearest open end of an uncovered cell.\n",
         r = cfg.robot_radius,
         t = cfg.tool_radius,
         w = 2.0 * cfg.tool_radius,
@@ -299,11 +299,11 @@ fn page(results: &[Measured]) -> String {
     md
 }
 
-const CONVEX: oxcover_robot::CriticalKind = oxcover_robot::CriticalKind {
-    event: oxcover_robot::Event::In,
-    convexity: oxcover_robot::Convexity::Convex,
+const CONVEX: oxcover_world::CriticalKind = oxcover_world::CriticalKind {
+    event: oxcover_world::Event::In,
+    convexity: oxcover_world::Convexity::Convex,
 };
-const CONCAVE: oxcover_robot::CriticalKind = oxcover_robot::CriticalKind {
-    event: oxcover_robot::Event::In,
-    convexity: oxcover_robot::Convexity::Concave,
+const CONCAVE: oxcover_world::CriticalKind = oxcover_world::CriticalKind {
+    event: oxcover_world::Event::In,
+    convexity: oxcover_world::Convexity::Concave,
 };

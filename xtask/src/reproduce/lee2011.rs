@@ -32,7 +32,7 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
-pub use oxcover_robot::world::{Shape, World};
+pub use oxcover_world::world::{Shape, World};
 
 use super::dir;
 

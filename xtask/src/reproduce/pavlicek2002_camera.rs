@@ -22,7 +22,6 @@ use oxcover::pipeline::{PlanRequest, plan, planner};
 use oxcover::planners::PlannerOptions;
 use oxcover::render::{Scene, render_to_file};
 use oxcover_grid::{Cell, DiscRobot, Grid, OccupancyGrid, Pose};
-use oxcover_robot::World;
 use oxcover_vision::calibration::{FloorPair, calibrate_distortion, calibrate_projection};
 use oxcover_vision::occupancy::Visibility;
 use oxcover_vision::synthetic::{Lighting, Rendered, SplitMix, SyntheticScene};
@@ -30,6 +29,7 @@ use oxcover_vision::{
     Camera, Distortion, Fusion, Mapper, MappingConfig, Profile, Projection, RgbImage, Scores,
     learn_profile, on_floor, readings, score, seen_region,
 };
+use oxcover_world::World;
 use rayon::prelude::*;
 
 use super::dir;

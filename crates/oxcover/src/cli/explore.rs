@@ -85,8 +85,8 @@ pub(crate) struct ExploreArgs {
 
 pub(crate) fn cmd_explore(a: &ExploreArgs) -> Result<()> {
     use oxcover::explore::{explore_world, graph_text, trace_csv};
-    use oxcover::planners::sensor_bcd::Config;
-    let world = oxcover::robot::World::read(&a.world)?;
+    use oxcover::world::sensor_bcd::Config;
+    let world = oxcover::world::World::read(&a.world)?;
     let cfg = Config {
         robot_radius: a.robot_radius,
         tool_radius: a.tool_radius,

@@ -1,17 +1,24 @@
-//! Obstacle geometry for ray casting, built once from an occupancy grid.
+//! Geometry for ray casting and clearances: the one module that uses parry2d.
 //!
 //! parry2d does the ray casts; its API changes often, so it stays behind
-//! this module: callers see metres and radians only. Every cell that is not
-//! free (occupied or unknown) becomes part of a box: the blocked cells of
-//! each row are merged into runs, each run one cuboid, and the map's outside
-//! is walled by four boxes along its edges. The boxes form one parry
-//! `Compound`, whose bounding-volume tree makes a cast cost about
-//! logarithmic in the number of boxes.
+//! this module: callers see metres and radians only.
+//!
+//! - [`WorldGeometry`]: a polygonal world's boundary curves (parry polylines
+//!   and balls), with exact clearances from the polygons themselves.
+//! - [`Obstacles`]: an occupancy grid's blocked space. Every cell that is not
+//!   free (occupied or unknown) becomes part of a box: the blocked cells of
+//!   each row are merged into runs, each run one cuboid, and the map's outside
+//!   is walled by four boxes along its edges. The boxes form one parry
+//!   `Compound`, whose bounding-volume tree makes a cast cost about
+//!   logarithmic in the number of boxes.
 
+use oxcover_grid::traverse::segment_distance;
 use oxcover_grid::{Cell, OccupancyGrid};
 use parry2d::math::{Pose, Vector};
 use parry2d::query::{Ray, RayCast};
-use parry2d::shape::{Compound, SharedShape};
+use parry2d::shape::{Ball, Compound, Polyline, SharedShape};
+
+use crate::world::{Outline, World};
 
 /// The blocked space of a map, for ray casts.
 pub struct Obstacles {
@@ -102,6 +109,127 @@ pub trait RayCaster {
 impl RayCaster for Obstacles {
     fn cast_surface(&self, origin: (f64, f64), angle: f64, max_range: f64) -> Option<(f64, usize)> {
         self.cast(origin, angle, max_range).map(|d| (d, 0))
+    }
+}
+
+/// A polygon edge and its surface.
+type Edge = ((f64, f64), (f64, f64), usize);
+
+/// A world's boundary curves for ray casts (parry2d) and exact clearances.
+pub struct WorldGeometry {
+    shapes: Vec<CurveShape>,
+    /// Every polygon edge with its surface, for exact distances.
+    segments: Vec<Edge>,
+    circles: Vec<((f64, f64), f64, usize)>,
+    world: World,
+}
+
+enum CurveShape {
+    Polyline(Polyline),
+    Ball((f64, f64), Ball),
+}
+
+impl std::fmt::Debug for WorldGeometry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("WorldGeometry")
+            .field("world", &self.world.name)
+            .field("curves", &self.shapes.len())
+            .finish()
+    }
+}
+
+impl WorldGeometry {
+    /// The curves of `world`.
+    #[must_use]
+    pub fn new(world: &World) -> Self {
+        let mut shapes = Vec::new();
+        let mut segments = Vec::new();
+        let mut circles = Vec::new();
+        for (surface, outline) in world.outlines().into_iter().enumerate() {
+            match outline {
+                Outline::Polygon(v) => {
+                    let n = v.len();
+                    for i in 0..n {
+                        segments.push((v[i], v[(i + 1) % n], surface));
+                    }
+                    let vertices = v
+                        .iter()
+                        .map(|p| Vector::new(p.0 as f32, p.1 as f32))
+                        .collect();
+                    let indices = (0..n as u32).map(|i| [i, (i + 1) % n as u32]).collect();
+                    shapes.push(CurveShape::Polyline(Polyline::new(vertices, Some(indices))));
+                }
+                Outline::Circle { centre, radius } => {
+                    circles.push((centre, radius, surface));
+                    shapes.push(CurveShape::Ball(centre, Ball::new(radius as f32)));
+                }
+            }
+        }
+        Self {
+            shapes,
+            segments,
+            circles,
+            world: world.clone(),
+        }
+    }
+
+    /// The world.
+    #[must_use]
+    pub fn world(&self) -> &World {
+        &self.world
+    }
+
+    /// Exact distance from `p` to the nearest boundary curve, and that
+    /// curve (0 the outer boundary, `k` obstacle `k − 1`); negative when `p`
+    /// is not free.
+    #[must_use]
+    pub fn clearance(&self, p: (f64, f64)) -> (f64, usize) {
+        let mut best = (f64::INFINITY, 0);
+        for &(a, b, s) in &self.segments {
+            let d = segment_distance(a, b, p);
+            if d < best.0 {
+                best = (d, s);
+            }
+        }
+        for &(c, r, s) in &self.circles {
+            let d = ((p.0 - c.0).hypot(p.1 - c.1) - r).abs();
+            if d < best.0 {
+                best = (d, s);
+            }
+        }
+        if !self.world.is_free(p) {
+            best.0 = -best.0;
+        }
+        best
+    }
+}
+
+impl RayCaster for WorldGeometry {
+    fn cast_surface(&self, origin: (f64, f64), angle: f64, max_range: f64) -> Option<(f64, usize)> {
+        let dir = Vector::new(angle.cos() as f32, angle.sin() as f32);
+        let mut best: Option<(f64, usize)> = None;
+        for (surface, shape) in self.shapes.iter().enumerate() {
+            let hit = match shape {
+                CurveShape::Polyline(p) => {
+                    let ray = Ray::new(Vector::new(origin.0 as f32, origin.1 as f32), dir);
+                    p.cast_ray(&Pose::IDENTITY, &ray, max_range as f32, false)
+                }
+                CurveShape::Ball(c, b) => {
+                    let ray = Ray::new(
+                        Vector::new((origin.0 - c.0) as f32, (origin.1 - c.1) as f32),
+                        dir,
+                    );
+                    b.cast_ray(&Pose::IDENTITY, &ray, max_range as f32, true)
+                }
+            };
+            if let Some(t) = hit {
+                let t = f64::from(t);
+                if best.is_none_or(|(d, _)| t < d) {
+                    best = Some((t, surface));
+                }
+            }
+        }
+        best
     }
 }
 

@@ -156,7 +156,8 @@ impl ThreeRayDetector {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::world::{Convexity, Event, World, WorldGeometry};
+    use crate::geometry::WorldGeometry;
+    use crate::world::{Convexity, Event, World};
 
     /// The hit of a ray from `p` at `angle` on the polyline `v` (closed).
     fn hit(p: (f64, f64), angle: f64, v: &[(f64, f64)]) -> (f64, f64) {

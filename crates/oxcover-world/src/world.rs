@@ -35,15 +35,12 @@
 
 use std::path::Path;
 
-use oxcover_grid::traverse::segment_distance;
 use oxcover_grid::{Grid, Occupancy, OccupancyGrid, Point};
-use parry2d::math::{Pose, Vector};
-use parry2d::query::{Ray, RayCast};
-use parry2d::shape::{Ball, Polyline};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
-use crate::geometry::RayCaster;
+#[cfg(test)]
+use crate::geometry::{RayCaster, WorldGeometry};
 
 /// Largest rasterised map a world may ask for (cells).
 pub const MAX_CELLS: usize = 50_000_000;
@@ -593,127 +590,6 @@ pub(crate) fn segments_cross(a: (f64, f64), b: (f64, f64), c: (f64, f64), d: (f6
     let (d1, d2) = (orient(c, d, a), orient(c, d, b));
     let (d3, d4) = (orient(a, b, c), orient(a, b, d));
     (d1 * d2 < 0.0) && (d3 * d4 < 0.0)
-}
-
-/// A polygon edge and its surface.
-type Edge = ((f64, f64), (f64, f64), usize);
-
-/// A world's boundary curves for ray casts (parry2d) and exact clearances.
-pub struct WorldGeometry {
-    shapes: Vec<CurveShape>,
-    /// Every polygon edge with its surface, for exact distances.
-    segments: Vec<Edge>,
-    circles: Vec<((f64, f64), f64, usize)>,
-    world: World,
-}
-
-enum CurveShape {
-    Polyline(Polyline),
-    Ball((f64, f64), Ball),
-}
-
-impl std::fmt::Debug for WorldGeometry {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("WorldGeometry")
-            .field("world", &self.world.name)
-            .field("curves", &self.shapes.len())
-            .finish()
-    }
-}
-
-impl WorldGeometry {
-    /// The curves of `world`.
-    #[must_use]
-    pub fn new(world: &World) -> Self {
-        let mut shapes = Vec::new();
-        let mut segments = Vec::new();
-        let mut circles = Vec::new();
-        for (surface, outline) in world.outlines().into_iter().enumerate() {
-            match outline {
-                Outline::Polygon(v) => {
-                    let n = v.len();
-                    for i in 0..n {
-                        segments.push((v[i], v[(i + 1) % n], surface));
-                    }
-                    let vertices = v
-                        .iter()
-                        .map(|p| Vector::new(p.0 as f32, p.1 as f32))
-                        .collect();
-                    let indices = (0..n as u32).map(|i| [i, (i + 1) % n as u32]).collect();
-                    shapes.push(CurveShape::Polyline(Polyline::new(vertices, Some(indices))));
-                }
-                Outline::Circle { centre, radius } => {
-                    circles.push((centre, radius, surface));
-                    shapes.push(CurveShape::Ball(centre, Ball::new(radius as f32)));
-                }
-            }
-        }
-        Self {
-            shapes,
-            segments,
-            circles,
-            world: world.clone(),
-        }
-    }
-
-    /// The world.
-    #[must_use]
-    pub fn world(&self) -> &World {
-        &self.world
-    }
-
-    /// Exact distance from `p` to the nearest boundary curve, and that
-    /// curve (0 the outer boundary, `k` obstacle `k − 1`); negative when `p`
-    /// is not free.
-    #[must_use]
-    pub fn clearance(&self, p: (f64, f64)) -> (f64, usize) {
-        let mut best = (f64::INFINITY, 0);
-        for &(a, b, s) in &self.segments {
-            let d = segment_distance(a, b, p);
-            if d < best.0 {
-                best = (d, s);
-            }
-        }
-        for &(c, r, s) in &self.circles {
-            let d = ((p.0 - c.0).hypot(p.1 - c.1) - r).abs();
-            if d < best.0 {
-                best = (d, s);
-            }
-        }
-        if !self.world.is_free(p) {
-            best.0 = -best.0;
-        }
-        best
-    }
-}
-
-impl RayCaster for WorldGeometry {
-    fn cast_surface(&self, origin: (f64, f64), angle: f64, max_range: f64) -> Option<(f64, usize)> {
-        let dir = Vector::new(angle.cos() as f32, angle.sin() as f32);
-        let mut best: Option<(f64, usize)> = None;
-        for (surface, shape) in self.shapes.iter().enumerate() {
-            let hit = match shape {
-                CurveShape::Polyline(p) => {
-                    let ray = Ray::new(Vector::new(origin.0 as f32, origin.1 as f32), dir);
-                    p.cast_ray(&Pose::IDENTITY, &ray, max_range as f32, false)
-                }
-                CurveShape::Ball(c, b) => {
-                    let ray = Ray::new(
-                        Vector::new((origin.0 - c.0) as f32, (origin.1 - c.1) as f32),
-                        dir,
-                    );
-                    b.cast_ray(&Pose::IDENTITY, &ray, max_range as f32, true)
-                }
-            };
-            if let Some(t) = hit {
-                let t = f64::from(t);
-                if best.is_none_or(|(d, _)| t < d) {
-                    best = Some((t, surface));
-                }
-            }
-        }
-        best
-    }
 }
 
 #[cfg(test)]

@@ -7,7 +7,7 @@ use rand_chacha::ChaCha8Rng;
 
 use crate::error::{Error, Result, positive};
 use crate::geometry::RayCaster;
-use crate::kinematics::Pose;
+use oxcover_grid::Pose;
 
 /// One range reading.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -39,7 +39,7 @@ impl RangeSensor {
         if n == 0 {
             return Err(Error::BadParameter {
                 name: "number of rays",
-                value: 0.0,
+                value: "0".into(),
                 expected: "at least 1",
             });
         }
@@ -57,7 +57,7 @@ impl RangeSensor {
         if !(noise_sd.is_finite() && noise_sd >= 0.0) {
             return Err(Error::BadParameter {
                 name: "range noise",
-                value: noise_sd,
+                value: noise_sd.to_string(),
                 expected: "a standard deviation in metres, 0 or more",
             });
         }

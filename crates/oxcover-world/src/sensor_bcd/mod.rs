@@ -38,7 +38,7 @@
 //! **Critical points** are the follower's turning points along x (the
 //! boundary's normal parallel to the sweep), classified by Demir 2018's
 //! three-ray test fired along x at the turning point
-//! ([`oxcover_robot::ThreeRayDetector`]); when the test does not give a
+//! ([`crate::ThreeRayDetector`]); when the test does not give a
 //! class that agrees with the follower about which way the boundary goes on,
 //! the follower's own geometry classifies it and the point is marked
 //! unconfirmed.
@@ -57,7 +57,7 @@ mod cycle;
 mod reeb;
 mod robot_map;
 
-use oxcover_robot::WorldGeometry;
+use crate::WorldGeometry;
 use serde::Serialize;
 
 pub use cycle::Counters;
@@ -169,7 +169,7 @@ impl Config {
     /// deviations of the range noise, at least 1 cm (the follower wavers by
     /// a few millimetres round corners even without noise). Features of the
     /// boundary shallower than this along x are not told from noise; compare
-    /// with [`oxcover_robot::World::critical_points`] at this tolerance.
+    /// with [`crate::World::critical_points`] at this tolerance.
     #[must_use]
     pub fn x_hysteresis(&self) -> f64 {
         (4.0 * self.noise_sd).max(0.01)

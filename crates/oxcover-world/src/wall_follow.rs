@@ -110,8 +110,10 @@ impl WallFollower {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{DiffDrive, Obstacles, Pose, RangeSensor};
+    use crate::{Obstacles, RangeSensor};
+    use oxcover_grid::Pose;
     use oxcover_grid::io::parse_ascii;
+    use oxcover_robot::DiffDrive;
 
     #[test]
     fn two_rays_give_the_wall_angle_and_distance() {

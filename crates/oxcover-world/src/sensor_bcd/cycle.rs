@@ -21,7 +21,7 @@
 //! detector along x; its class is kept when it agrees with the follower
 //! about which way the boundary continues.
 
-use oxcover_robot::{CriticalKind, Detection};
+use crate::{CriticalKind, Detection};
 
 use super::Config;
 use super::body::Body;
@@ -334,8 +334,7 @@ impl<'w> Explorer<'w> {
         // Fired along x; when that ray grazes past a thin tip (it returns
         // much farther than the nearest point), aimed at the nearest point.
         let keep = self.body.keep;
-        let far =
-            |r: &oxcover_robot::Returns| (r.centre.0 - p.0).hypot(r.centre.1 - p.1) > 2.0 * keep;
+        let far = |r: &crate::Returns| (r.centre.0 - p.0).hypot(r.centre.1 - p.1) > 2.0 * keep;
         let mut returns = self.body.detect(if towards > 0.0 {
             0.0
         } else {

@@ -16,7 +16,7 @@
 //! cells. The graph's nodes are the critical points, its edges the cells
 //! (those between two critical points of one slab hold no lap).
 
-use oxcover_robot::{Convexity, CriticalKind, Event};
+use crate::{Convexity, CriticalKind, Event};
 use serde::Serialize;
 
 /// Detections closer than this (m) are one critical point.

@@ -20,7 +20,7 @@
 use std::collections::VecDeque;
 use std::f64::consts::TAU;
 
-use oxcover_robot::{RangeSensor, ThreeRayDetector, WorldGeometry};
+use crate::{RangeSensor, ThreeRayDetector, WorldGeometry};
 
 use super::robot_map::RobotMap;
 use super::{Config, State, TracePoint};
@@ -79,7 +79,7 @@ pub(crate) struct Body<'w> {
 impl<'w> Body<'w> {
     /// A robot at `start`, after its first scan.
     pub(crate) fn new(world: &'w WorldGeometry, cfg: &Config, start: (f64, f64)) -> Result<Self> {
-        let bad = |e: oxcover_robot::Error| Error::BadParameter {
+        let bad = |e: Error| Error::BadParameter {
             name: "range sensor",
             value: e.to_string(),
             expected: "a valid ring of rays",
@@ -269,7 +269,7 @@ impl<'w> Body<'w> {
 
     /// Fires the three-ray detector from the current position, the centre
     /// ray at the absolute heading `angle`.
-    pub(crate) fn detect(&mut self, angle: f64) -> Option<oxcover_robot::Returns> {
+    pub(crate) fn detect(&mut self, angle: f64) -> Option<crate::Returns> {
         let det = self.detector;
         det.fire(&mut self.probe, self.world, self.p, angle)
     }

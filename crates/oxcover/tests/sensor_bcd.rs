@@ -3,11 +3,11 @@
 //! run ends within a length bounded by the world's area and perimeter),
 //! exact laps and graphs on hand-drawn rooms, bad input, determinism.
 
-use oxcover_grid::footprint::covered_cells;
-use oxcover_grid::{DiscRobot, Point};
-use oxcover_planners::sensor_bcd::{Config, Exploration, State, explore};
-use oxcover_planners::{CoverageProblem, Start};
-use oxcover_robot::{
+use oxcover::grid::footprint::covered_cells;
+use oxcover::grid::{DiscRobot, Point};
+use oxcover::planners::{CoverageProblem, Start};
+use oxcover::world::sensor_bcd::{Config, Exploration, State, explore};
+use oxcover::world::{
     Convexity, Event, Outline, RandomWorldSpec, World, WorldGeometry, random_world,
 };
 

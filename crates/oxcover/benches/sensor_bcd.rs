@@ -6,7 +6,7 @@
 //! runs in the same group as the reference: the ratio is what not knowing
 //! the map costs in computation.
 //!
-//! Run: `cargo bench -p oxcover-planners --bench sensor_bcd`; `cargo xtask
+//! Run: `cargo bench -p oxcover --bench sensor_bcd`; `cargo xtask
 //! bench --only sensor_bcd` runs it and writes the figures into
 //! `docs/benchmarks.md`.
 
@@ -20,10 +20,10 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use oxcover_grid::{DiscRobot, Point};
-use oxcover_planners::sensor_bcd::{Config, explore};
-use oxcover_planners::{CoverageProblem, Start, find};
-use oxcover_robot::{World, WorldGeometry};
+use oxcover::grid::{DiscRobot, Point};
+use oxcover::planners::{CoverageProblem, Start, find};
+use oxcover::world::sensor_bcd::{Config, explore};
+use oxcover::world::{World, WorldGeometry};
 
 /// Worlds measured.
 pub const WORLDS: [&str; 3] = ["fig05_polygon", "fig14_concave", "floor_plan"];

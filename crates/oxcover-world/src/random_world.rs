@@ -13,7 +13,8 @@ use rand_chacha::ChaCha8Rng;
 
 use oxcover_grid::traverse::segment_distance;
 
-use crate::world::{Shape, World, WorldGeometry, segments_cross};
+use crate::geometry::WorldGeometry;
+use crate::world::{Shape, World, segments_cross};
 
 /// What to draw.
 #[derive(Clone, Debug, PartialEq)]
