@@ -32,7 +32,7 @@ impl DiscRobot {
     /// tool radius finite and `> 0`.
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] naming `--robot-radius` or `--tool-radius`.
+    /// [`Error::BadParameter`] naming `--robot-radius` or `--tool-radius`.
     pub fn new(robot_radius: f64, tool_radius: f64) -> Result<Self> {
         Ok(Self {
             robot_radius: non_negative("--robot-radius", robot_radius)?,

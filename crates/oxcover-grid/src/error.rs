@@ -100,8 +100,8 @@ pub enum Error {
         message: String,
     },
     /// A numeric parameter is out of range (negative radius, NaN, ...).
-    #[error("{name} is {value}, expected {expected}")]
-    InvalidParameter {
+    #[error("{name} is `{value}`, expected {expected}")]
+    BadParameter {
         /// Parameter name as the user knows it (e.g. `--robot-radius`).
         name: &'static str,
         /// The value given.
@@ -166,27 +166,56 @@ pub enum Error {
 /// Shorthand for results of this crate.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
-/// Checks that a parameter is finite and `>= 0`.
-pub fn non_negative(name: &'static str, value: f64) -> Result<f64> {
+/// A parameter outside its range, as the one validation helper of the
+/// workspace ([`positive`], [`non_negative`]) reports it; every crate's
+/// error type turns it into its own `BadParameter` variant.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BadValue {
+    /// Parameter name as the user knows it (e.g. `--robot-radius`).
+    pub name: &'static str,
+    /// The value given.
+    pub value: f64,
+    /// What is accepted.
+    pub expected: &'static str,
+}
+
+impl From<BadValue> for Error {
+    fn from(b: BadValue) -> Self {
+        Error::BadParameter {
+            name: b.name,
+            value: b.value.to_string(),
+            expected: b.expected,
+        }
+    }
+}
+
+/// `value` if it is finite and `>= 0`.
+///
+/// # Errors
+/// [`BadValue`] naming the parameter.
+pub fn non_negative(name: &'static str, value: f64) -> std::result::Result<f64, BadValue> {
     if value.is_finite() && value >= 0.0 {
         Ok(value)
     } else {
-        Err(Error::InvalidParameter {
+        Err(BadValue {
             name,
-            value: value.to_string(),
+            value,
             expected: "a finite number >= 0",
         })
     }
 }
 
-/// Checks that a parameter is finite and `> 0`.
-pub fn positive(name: &'static str, value: f64) -> Result<f64> {
+/// `value` if it is finite and `> 0`.
+///
+/// # Errors
+/// [`BadValue`] naming the parameter.
+pub fn positive(name: &'static str, value: f64) -> std::result::Result<f64, BadValue> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
-        Err(Error::InvalidParameter {
+        Err(BadValue {
             name,
-            value: value.to_string(),
+            value,
             expected: "a finite number > 0",
         })
     }

@@ -52,6 +52,13 @@ pub fn point(x: Real, y: Real) -> Point {
     Point::new(x, y)
 }
 
+/// `√(x² + y²)`, without `hypot`'s care for overflow (for hot paths on
+/// coordinates that are metres or cells, far from overflow).
+#[must_use]
+pub fn norm(x: Real, y: Real) -> Real {
+    (x * x + y * y).sqrt()
+}
+
 /// Heading of a displacement in radians, in `(-pi, pi]`, measured from +x towards +y.
 #[must_use]
 pub fn heading(v: &Vector) -> Real {

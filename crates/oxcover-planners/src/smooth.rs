@@ -74,9 +74,10 @@
 //! it terminates, and it stops only when no plannable cell is unexplored.
 
 use oxcover_distance::{BlockMap, CoarseToFine, Wavefront, cidt};
+use oxcover_grid::math::norm;
 use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_distance};
 use oxcover_grid::{Cell, Dir4, Grid};
-use oxcover_robot::{ArchimedeanSpiral, QuinticBezier};
+use oxcover_robot::{ArchimedeanSpiral, G2Spline, QuinticBezier};
 
 use crate::error::{Error, Result};
 use crate::metre_path::{Clearance, PathBuilder, for_each_contract_sample};
@@ -576,7 +577,7 @@ impl<'a> Run<'a> {
             }
             return;
         }
-        let mut spline = Spline::through(&pts);
+        let mut spline = G2Spline::through(&pts);
         // Wall points each segment answers for, and the unfiltered path points it replaces.
         let covers: Vec<&[Waypoint]> = run.windows(2).map(|w| &wps[w[0] + 1..=w[1]]).collect();
         let originals: Vec<Vec<GridPoint>> = run
@@ -584,7 +585,7 @@ impl<'a> Run<'a> {
             .map(|w| wps[w[0]..=w[1]].iter().map(|x| x.p).collect())
             .collect();
         let (clear, reach) = (&self.clear, self.reach);
-        let ok = |sp: &Spline, i: usize| {
+        let ok = |sp: &G2Spline, i: usize| {
             let seg = sp.segment(i, 1.0);
             let samples = sample(&seg);
             curve_ok(clear, &samples, covers[i]).then(|| cost(&seg, &samples, &originals[i], reach))
@@ -629,7 +630,7 @@ impl<'a> Run<'a> {
                 // The chord between the unmoved ends is known good; PSO may
                 // have moved an end, so check and route if needed.
                 self.straight += 1;
-                let q = spline.points[i + 1];
+                let q = spline.point(i + 1);
                 if self.builder.clear(self.builder.last(), q) {
                     self.builder.push(q);
                 } else {
@@ -637,95 +638,6 @@ impl<'a> Run<'a> {
                 }
             }
         }
-    }
-}
-
-/// A G²-continuous spline of quintic Bézier segments through points: at each
-/// point a unit tangent (the direction from the previous to the next point)
-/// and a curvature (of the circle through the point and its neighbours; 0 at
-/// the ends); a segment's end tangents have its chord's length, and its end
-/// second derivatives give the points' curvatures. Unlike uniform
-/// (Catmull–Rom) tangents, chord-length tangents do not loop where points are
-/// unevenly spaced.
-#[derive(Clone, Debug)]
-struct Spline {
-    points: Vec<GridPoint>,
-    /// Tangent angle at each point.
-    angle: Vec<f64>,
-    /// Tangent length factor at each point.
-    scale: Vec<f64>,
-    /// Signed curvature at each point.
-    kappa: Vec<f64>,
-}
-
-impl Spline {
-    fn through(points: &[GridPoint]) -> Self {
-        let n = points.len();
-        let dir = |a: GridPoint, b: GridPoint| (b.1 - a.1).atan2(b.0 - a.0);
-        let angle = (0..n)
-            .map(|i| {
-                if i == 0 {
-                    dir(points[0], points[1])
-                } else if i == n - 1 {
-                    dir(points[n - 2], points[n - 1])
-                } else {
-                    // Unit directions of both chords, summed (bisector).
-                    let (a, b) = (dir(points[i - 1], points[i]), dir(points[i], points[i + 1]));
-                    (a.sin() + b.sin()).atan2(a.cos() + b.cos())
-                }
-            })
-            .collect();
-        let kappa = (0..n)
-            .map(|i| {
-                if i == 0 || i == n - 1 {
-                    return 0.0;
-                }
-                let (a, b, c) = (points[i - 1], points[i], points[i + 1]);
-                let cross = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
-                let (ab, bc) = (norm(b.0 - a.0, b.1 - a.1), norm(c.0 - b.0, c.1 - b.1));
-                let d = ab * bc * norm(c.0 - a.0, c.1 - a.1);
-                // |κ|·chord ≤ 2 on both sides, so a sharp point cannot make a
-                // segment loop (the same value on both sides keeps G²).
-                let limit = 2.0 / ab.min(bc).max(1e-9);
-                if d > 1e-12 {
-                    (2.0 * cross / d).clamp(-limit, limit)
-                } else {
-                    0.0
-                }
-            })
-            .collect();
-        Self {
-            points: points.to_vec(),
-            angle,
-            scale: vec![1.0; n],
-            kappa,
-        }
-    }
-
-    /// Segment `i` with its tangents shortened by `k` (1 = the spline's).
-    fn segment(&self, i: usize, k: f64) -> QuinticBezier {
-        let (p0, p1) = (self.points[i], self.points[i + 1]);
-        let chord = norm(p1.0 - p0.0, p1.1 - p0.1);
-        let end = |j: usize| {
-            let len = chord * self.scale[j] * k;
-            let (sin, cos) = self.angle[j].sin_cos();
-            // Curvature κ needs a normal second derivative κ·|T|².
-            let a = self.kappa[j] * len * len;
-            ((len * cos, len * sin), (-a * sin, a * cos))
-        };
-        let ((t0, a0), (t1, a1)) = (end(i), end(i + 1));
-        QuinticBezier::from_ends(p0, p1, t0, t1, a0, a1)
-    }
-
-    /// Point `i` of `base` adjusted by the PSO position
-    /// `x = (normal shift, tangent rotation, tangent scale − 1, curvature scale − 1)`.
-    fn adjust(&mut self, base: &Spline, i: usize, x: &[f64; 4]) {
-        let (sin, cos) = base.angle[i].sin_cos();
-        let p = base.points[i];
-        self.points[i] = (p.0 - x[0] * sin, p.1 + x[0] * cos);
-        self.angle[i] = base.angle[i] + x[1];
-        self.scale[i] = base.scale[i] * (1.0 + x[2]);
-        self.kappa[i] = base.kappa[i] * (1.0 + x[3]);
     }
 }
 
@@ -903,11 +815,6 @@ fn trace(grid: &Grid<bool>, start: Cell, inside: impl Fn(Cell) -> bool) -> Vec<C
     out
 }
 
-/// `√(x² + y²)`, without `hypot`'s care for overflow (a hot path here).
-fn norm(x: f64, y: f64) -> f64 {
-    (x * x + y * y).sqrt()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -955,45 +862,6 @@ mod tests {
         seen.sort_unstable_by_key(|c| (c.row, c.col));
         seen.dedup();
         assert_eq!(seen.len(), 10);
-    }
-
-    #[test]
-    fn spline_is_g2_at_joins_and_does_not_loop_on_uneven_points() {
-        let pts = [
-            (0.0, 0.0),
-            (0.3, 0.0),
-            (5.0, 1.0),
-            (5.4, 1.3),
-            (6.0, 4.0),
-            (2.0, 5.0),
-        ];
-        let sp = Spline::through(&pts);
-        for (i, p) in pts.iter().enumerate().take(pts.len() - 1).skip(1) {
-            let (a, b) = (sp.segment(i - 1, 1.0), sp.segment(i, 1.0));
-            let (da, db) = (a.derivative(1.0), b.derivative(0.0));
-            let cross = da.0 * db.1 - da.1 * db.0;
-            assert!(cross.abs() < 1e-9 * norm(da.0, da.1) * norm(db.0, db.1));
-            assert!(da.0 * db.0 + da.1 * db.1 > 0.0, "same direction at {i}");
-            assert!(
-                (a.curvature(1.0) - b.curvature(0.0)).abs() < 1e-9,
-                "curvature at {i}"
-            );
-            assert!((a.point(1.0).0 - p.0).abs() < 1e-12);
-        }
-        let poly: f64 = pts
-            .windows(2)
-            .map(|w| norm(w[1].0 - w[0].0, w[1].1 - w[0].1))
-            .sum();
-        let curve: f64 = (0..pts.len() - 1)
-            .map(|i| sp.segment(i, 1.0).length())
-            .sum();
-        assert!(curve < 1.3 * poly, "{curve} vs {poly}");
-        // The seed's uniform derivatives loop on the same points.
-        let uniform: f64 = oxcover_robot::spline_through(&pts)
-            .iter()
-            .map(QuinticBezier::length)
-            .sum();
-        assert!(uniform > curve, "{uniform} vs {curve}");
     }
 
     #[test]

@@ -6,6 +6,13 @@
 //! `P₄ = P₅ − T₁/5`, `P₂ = A₀/20 + 2P₁ − P₀`, `P₃ = A₁/20 + 2P₄ − P₅`, which
 //! make `Q'(0) = T₀`, `Q'(1) = T₁`, `Q''(0) = A₀`, `Q''(1) = A₁`. A spline of
 //! such segments that share `T` and `A` at its joins is C² continuous.
+//!
+//! Two splines through points: [`spline_through`], the paper's uniform
+//! derivatives (C², but it loops where points are unevenly spaced), and
+//! [`G2Spline`], chord-length tangents and circle curvatures (G², no loops),
+//! which the smooth planner drives and tunes.
+
+use oxcover_grid::math::norm;
 
 /// A planar point or vector (m).
 pub type Vec2 = (f64, f64);
@@ -176,9 +183,104 @@ pub fn spline_through(points: &[Vec2]) -> Vec<QuinticBezier> {
         .collect()
 }
 
-/// `√(x² + y²)`, without `hypot`'s care for overflow (a hot path here).
-fn norm(x: f64, y: f64) -> f64 {
-    (x * x + y * y).sqrt()
+/// A G²-continuous spline of quintic Bézier segments through points: at each
+/// point a unit tangent (the direction from the previous to the next point)
+/// and a curvature (of the circle through the point and its neighbours; 0 at
+/// the ends); a segment's end tangents have its chord's length, and its end
+/// second derivatives give the points' curvatures. Unlike uniform
+/// (Catmull–Rom) tangents, chord-length tangents do not loop where points are
+/// unevenly spaced.
+#[derive(Clone, Debug)]
+pub struct G2Spline {
+    points: Vec<Vec2>,
+    /// Tangent angle at each point.
+    angle: Vec<f64>,
+    /// Tangent length factor at each point.
+    scale: Vec<f64>,
+    /// Signed curvature at each point.
+    kappa: Vec<f64>,
+}
+
+impl G2Spline {
+    /// The spline through `points` (at least two).
+    #[must_use]
+    pub fn through(points: &[Vec2]) -> Self {
+        let n = points.len();
+        let dir = |a: Vec2, b: Vec2| (b.1 - a.1).atan2(b.0 - a.0);
+        let angle = (0..n)
+            .map(|i| {
+                if i == 0 {
+                    dir(points[0], points[1])
+                } else if i == n - 1 {
+                    dir(points[n - 2], points[n - 1])
+                } else {
+                    // Unit directions of both chords, summed (bisector).
+                    let (a, b) = (dir(points[i - 1], points[i]), dir(points[i], points[i + 1]));
+                    (a.sin() + b.sin()).atan2(a.cos() + b.cos())
+                }
+            })
+            .collect();
+        let kappa = (0..n)
+            .map(|i| {
+                if i == 0 || i == n - 1 {
+                    return 0.0;
+                }
+                let (a, b, c) = (points[i - 1], points[i], points[i + 1]);
+                let cross = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
+                let (ab, bc) = (norm(b.0 - a.0, b.1 - a.1), norm(c.0 - b.0, c.1 - b.1));
+                let d = ab * bc * norm(c.0 - a.0, c.1 - a.1);
+                // |κ|·chord ≤ 2 on both sides, so a sharp point cannot make a
+                // segment loop (the same value on both sides keeps G²).
+                let limit = 2.0 / ab.min(bc).max(1e-9);
+                if d > 1e-12 {
+                    (2.0 * cross / d).clamp(-limit, limit)
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        Self {
+            points: points.to_vec(),
+            angle,
+            scale: vec![1.0; n],
+            kappa,
+        }
+    }
+
+    /// Point `i`.
+    #[must_use]
+    pub fn point(&self, i: usize) -> Vec2 {
+        self.points[i]
+    }
+
+    /// Segment `i` (from point `i` to `i + 1`) with its tangents scaled by
+    /// `k` (1 = the spline's).
+    #[must_use]
+    pub fn segment(&self, i: usize, k: f64) -> QuinticBezier {
+        let (p0, p1) = (self.points[i], self.points[i + 1]);
+        let chord = norm(p1.0 - p0.0, p1.1 - p0.1);
+        let end = |j: usize| {
+            let len = chord * self.scale[j] * k;
+            let (sin, cos) = self.angle[j].sin_cos();
+            // Curvature κ needs a normal second derivative κ·|T|².
+            let a = self.kappa[j] * len * len;
+            ((len * cos, len * sin), (-a * sin, a * cos))
+        };
+        let ((t0, a0), (t1, a1)) = (end(i), end(i + 1));
+        QuinticBezier::from_ends(p0, p1, t0, t1, a0, a1)
+    }
+
+    /// Point `i` of `base` adjusted by
+    /// `x = (normal shift, tangent rotation, tangent scale − 1, curvature scale − 1)`
+    /// (the smooth planner's PSO position).
+    pub fn adjust(&mut self, base: &G2Spline, i: usize, x: &[f64; 4]) {
+        let (sin, cos) = base.angle[i].sin_cos();
+        let p = base.points[i];
+        self.points[i] = (p.0 - x[0] * sin, p.1 + x[0] * cos);
+        self.angle[i] = base.angle[i] + x[1];
+        self.scale[i] = base.scale[i] * (1.0 + x[2]);
+        self.kappa[i] = base.kappa[i] * (1.0 + x[3]);
+    }
 }
 
 #[cfg(test)]
@@ -249,5 +351,41 @@ mod tests {
         // A circle-like turn to the left has positive curvature.
         assert!(s[1].curvature(0.5) > 0.0);
         assert!(spline_through(&pts[..1]).is_empty());
+    }
+
+    #[test]
+    fn spline_is_g2_at_joins_and_does_not_loop_on_uneven_points() {
+        let pts = [
+            (0.0, 0.0),
+            (0.3, 0.0),
+            (5.0, 1.0),
+            (5.4, 1.3),
+            (6.0, 4.0),
+            (2.0, 5.0),
+        ];
+        let sp = G2Spline::through(&pts);
+        for (i, p) in pts.iter().enumerate().take(pts.len() - 1).skip(1) {
+            let (a, b) = (sp.segment(i - 1, 1.0), sp.segment(i, 1.0));
+            let (da, db) = (a.derivative(1.0), b.derivative(0.0));
+            let cross = da.0 * db.1 - da.1 * db.0;
+            assert!(cross.abs() < 1e-9 * norm(da.0, da.1) * norm(db.0, db.1));
+            assert!(da.0 * db.0 + da.1 * db.1 > 0.0, "same direction at {i}");
+            assert!(
+                (a.curvature(1.0) - b.curvature(0.0)).abs() < 1e-9,
+                "curvature at {i}"
+            );
+            assert!((a.point(1.0).0 - p.0).abs() < 1e-12);
+        }
+        let poly: f64 = pts
+            .windows(2)
+            .map(|w| norm(w[1].0 - w[0].0, w[1].1 - w[0].1))
+            .sum();
+        let curve: f64 = (0..pts.len() - 1)
+            .map(|i| sp.segment(i, 1.0).length())
+            .sum();
+        assert!(curve < 1.3 * poly, "{curve} vs {poly}");
+        // The seed's uniform derivatives loop on the same points.
+        let uniform: f64 = spline_through(&pts).iter().map(QuinticBezier::length).sum();
+        assert!(uniform > curve, "{uniform} vs {curve}");
     }
 }

@@ -13,7 +13,7 @@
 
 use serde::Deserialize;
 
-use crate::error::{Error, Result, positive};
+use crate::error::{Error, Result, non_negative, positive};
 use crate::kinematics::DiffDrive;
 use crate::simulate::Sample;
 
@@ -36,18 +36,6 @@ pub struct EnergyModel {
     pub gear_ratio: f64,
     /// Constant electronics load (W).
     pub electronics_power: f64,
-}
-
-fn non_negative(name: &'static str, value: f64) -> Result<f64> {
-    if value.is_finite() && value >= 0.0 {
-        Ok(value)
-    } else {
-        Err(Error::BadParameter {
-            name,
-            value,
-            expected: "a finite number, 0 or more",
-        })
-    }
 }
 
 impl EnergyModel {

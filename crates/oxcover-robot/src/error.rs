@@ -19,18 +19,17 @@ pub enum Error {
     Spec(String),
 }
 
+impl From<oxcover_grid::error::BadValue> for Error {
+    fn from(b: oxcover_grid::error::BadValue) -> Self {
+        Error::BadParameter {
+            name: b.name,
+            value: b.value,
+            expected: b.expected,
+        }
+    }
+}
+
 /// Shorthand for results of this crate.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
-/// `value` if it is finite and strictly positive, else a [`Error::BadParameter`].
-pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64> {
-    if value.is_finite() && value > 0.0 {
-        Ok(value)
-    } else {
-        Err(Error::BadParameter {
-            name,
-            value,
-            expected: "a finite number above 0",
-        })
-    }
-}
+pub(crate) use oxcover_grid::error::{non_negative, positive};

@@ -12,14 +12,7 @@
 use crate::error::{Result, positive};
 
 pub use oxcover_grid::Pose;
-
-/// `a` wrapped into `(−π, π]`.
-#[must_use]
-pub fn wrap_angle(a: f64) -> f64 {
-    use std::f64::consts::{PI, TAU};
-    let w = a.rem_euclid(TAU);
-    if w > PI { w - TAU } else { w }
-}
+use oxcover_grid::math::wrap_angle;
 
 /// `sin x / x`, 1 at 0.
 #[must_use]

@@ -47,11 +47,11 @@ pub mod simulate;
 pub mod spiral;
 pub mod timing;
 
-pub use bezier::{QuinticBezier, spline_derivatives, spline_through};
+pub use bezier::{G2Spline, QuinticBezier, spline_derivatives, spline_through};
 pub use control::{Controller, Kanayama, Klancar, Reference, TrackingError};
 pub use energy::{EnergyModel, RobotSpec};
 pub use error::{Error, Result};
-pub use kinematics::{DiffDrive, Pose, wrap_angle};
+pub use kinematics::{DiffDrive, Pose};
 pub use simulate::{Sample, simulate};
 pub use spiral::ArchimedeanSpiral;
 pub use timing::{Limits, Timing};

@@ -22,7 +22,8 @@
 
 use crate::control::Reference;
 use crate::error::{Result, positive};
-use crate::kinematics::{Pose, wrap_angle};
+use crate::kinematics::Pose;
+use oxcover_grid::math::wrap_angle;
 
 /// Distance (m) over which the reference heading eases through a gentle
 /// vertex on either side (half a segment when shorter).

@@ -277,12 +277,11 @@ impl World {
     /// # Errors
     /// A message naming the field and what was expected.
     pub fn check(&self) -> std::result::Result<(), String> {
+        // The workspace's one check, with names built from the shape.
         let positive = |name: &str, v: f64| {
-            if v.is_finite() && v > 0.0 {
-                Ok(())
-            } else {
-                Err(format!("{name} is {v}, expected a finite number above 0"))
-            }
+            oxcover_grid::error::positive("", v)
+                .map(|_| ())
+                .map_err(|b| format!("{name} is `{v}`, expected {}", b.expected))
         };
         positive("width", self.width)?;
         positive("height", self.height)?;

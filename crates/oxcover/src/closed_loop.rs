@@ -138,14 +138,14 @@ impl Run {
 /// # Errors
 /// A bad step (or one giving more than
 /// [`oxcover_robot::simulate::MAX_STEPS`] steps), noise or limit
-/// ([`Error::Argument`]); a path the metrics refuse.
+/// ([`Error::BadParameter`]); a path the metrics refuse.
 pub fn execute(
     map: &OccupancyGrid,
     robot: DiscRobot,
     points: &[Point],
     cfg: &ClosedLoop,
 ) -> Result<Run> {
-    let bad = |name: &'static str, value: f64, expected: &str| Error::Argument {
+    let bad = |name: &'static str, value: f64, expected: &str| Error::BadParameter {
         name,
         value: value.to_string(),
         expected: expected.into(),
@@ -161,7 +161,7 @@ pub fn execute(
         ));
     }
     let xy: Vec<(f64, f64)> = points.iter().map(|p| (p.x, p.y)).collect();
-    let timing = Timing::new(&xy, cfg.limits).map_err(|e| Error::Argument {
+    let timing = Timing::new(&xy, cfg.limits).map_err(|e| Error::BadParameter {
         name: "limits",
         value: format!("{:?}", cfg.limits),
         expected: e.to_string(),
@@ -180,7 +180,7 @@ pub fn execute(
     let run_s = timing.duration() + settle;
     let steps = (run_s / cfg.dt).ceil();
     if !(steps.is_finite() && steps <= oxcover_robot::simulate::MAX_STEPS as f64) {
-        return Err(Error::Argument {
+        return Err(Error::BadParameter {
             name: "--dt",
             value: cfg.dt.to_string(),
             expected: format!(

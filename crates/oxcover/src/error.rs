@@ -36,7 +36,7 @@ pub enum Error {
     },
     /// A command-line value cannot be used.
     #[error("{name} is `{value}`, expected {expected}")]
-    Argument {
+    BadParameter {
         /// The option.
         name: &'static str,
         /// The value given.
@@ -86,6 +86,16 @@ impl Error {
         Error::Write {
             path: path.into(),
             source,
+        }
+    }
+}
+
+impl From<oxcover_grid::error::BadValue> for Error {
+    fn from(b: oxcover_grid::error::BadValue) -> Self {
+        Error::BadParameter {
+            name: b.name,
+            value: b.value.to_string(),
+            expected: b.expected.to_string(),
         }
     }
 }

@@ -100,14 +100,14 @@ pub struct ExploreReport<'a> {
 /// Explores `world` from `start` (the world's own start when `None`).
 ///
 /// # Errors
-/// [`Error::Argument`] without a start, planner errors (bad settings, a
+/// [`Error::BadParameter`] without a start, planner errors (bad settings, a
 /// start in a wall), and map errors from scoring.
 pub fn explore_world(world: &World, cfg: &Config, start: Option<Point>) -> Result<ExploreOutcome> {
     let start = match (start, world.start) {
         (Some(p), _) => (p.x, p.y),
         (None, Some(p)) => p,
         (None, None) => {
-            return Err(Error::Argument {
+            return Err(Error::BadParameter {
                 name: "--start",
                 value: "none".into(),
                 expected: format!("X,Y: the world `{}` names no start", world.name),

@@ -95,7 +95,7 @@ pub fn evaluate(
 ) -> Result<Evaluation> {
     let start = points.first().copied();
     let Some(start) = start else {
-        return Err(crate::Error::Argument {
+        return Err(crate::Error::BadParameter {
             name: "path",
             value: "empty".into(),
             expected: "at least one waypoint".into(),
@@ -107,7 +107,7 @@ pub fn evaluate(
     let length: f64 = points.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
     let samples = length / (map.resolution() / 4.0);
     if samples > MAX_SAMPLES {
-        return Err(crate::Error::Argument {
+        return Err(crate::Error::BadParameter {
             name: "path",
             value: format!("{length:.1} m long"),
             expected: format!(

@@ -55,12 +55,12 @@ pub fn planners() -> Vec<PlannerInfo> {
 /// The planner `name` with `options`, for the command line.
 ///
 /// # Errors
-/// [`Error::Argument`] naming `--planner` and listing the known names (with
+/// [`Error::BadParameter`] naming `--planner` and listing the known names (with
 /// a pointer to `explore` for the sensor-based planner); an option the
 /// planner does not take ([`oxcover_planners::Error::OptionNotTaken`]).
 pub fn planner(name: &str, options: &PlannerOptions) -> Result<Arc<dyn Planner>> {
     oxcover_planners::build(name, options).map_err(|e| match e {
-        oxcover_planners::Error::UnknownPlanner(_) => Error::Argument {
+        oxcover_planners::Error::UnknownPlanner(_) => Error::BadParameter {
             name: "--planner",
             value: name.to_string(),
             expected: format!(

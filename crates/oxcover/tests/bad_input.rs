@@ -213,7 +213,7 @@ fn bad_inputs_exit_2_with_one_line() {
                 "--robot-radius",
                 "-1",
             ],
-            "--robot-radius is -1",
+            "--robot-radius is `-1`",
         ),
         (
             vec![
@@ -224,11 +224,11 @@ fn bad_inputs_exit_2_with_one_line() {
                 "--robot-radius",
                 "NaN",
             ],
-            "--robot-radius is NaN",
+            "--robot-radius is `NaN`",
         ),
         (
             vec!["plan", &good_yaml, "--planner", "dtc", "--tool-radius", "0"],
-            "--tool-radius is 0",
+            "--tool-radius is `0`",
         ),
         (
             vec![
@@ -313,7 +313,7 @@ fn bad_inputs_exit_2_with_one_line() {
                 "--tool-radius",
                 "inf",
             ],
-            "--tool-radius is inf",
+            "--tool-radius is `inf`",
         ),
         (
             vec![
@@ -337,7 +337,7 @@ fn bad_inputs_exit_2_with_one_line() {
         ),
         (
             vec!["plan", &png_map, "--planner", "dtc", "--resolution", "-0.5"],
-            "--resolution is -0.5",
+            "--resolution is `-0.5`",
         ),
         (
             vec![

@@ -13,7 +13,8 @@ mod klancar;
 pub use kanayama::Kanayama;
 pub use klancar::Klancar;
 
-use crate::kinematics::{Pose, wrap_angle};
+use crate::kinematics::Pose;
+use oxcover_grid::math::wrap_angle;
 
 /// A reference state to track.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

@@ -63,7 +63,7 @@ use serde::Serialize;
 pub use cycle::Counters;
 pub use reeb::{CellEdge, DetectedCritical, ReebGraph};
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, positive};
 
 /// What the robot was doing on the way to a trace point.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
@@ -187,13 +187,8 @@ impl Config {
                 expected,
             })
         };
-        let positive = |v: f64| v.is_finite() && v > 0.0;
-        if !positive(self.robot_radius) {
-            return bad("robot radius", self.robot_radius, "a finite number above 0");
-        }
-        if !positive(self.tool_radius) {
-            return bad("tool radius", self.tool_radius, "a finite number above 0");
-        }
+        positive("robot radius", self.robot_radius)?;
+        positive("tool radius", self.tool_radius)?;
         let keep = self.robot_radius + self.margin;
         if !(self.margin.is_finite() && self.margin >= 0.0 && self.margin < self.robot_radius) {
             return bad("margin", self.margin, "0 or more, below the robot radius");
@@ -215,21 +210,23 @@ impl Config {
                 "a standard deviation from 0 to a tenth of (robot radius + margin)",
             );
         }
-        if !(positive(self.step) && self.step <= keep / 4.0) {
+        if !(positive("step", self.step).is_ok() && self.step <= keep / 4.0) {
             return bad(
                 "step",
                 self.step,
                 "above 0 and at most a quarter of (robot radius + margin)",
             );
         }
-        if !(positive(self.map_resolution) && self.map_resolution <= keep / 4.0) {
+        if !(positive("map resolution", self.map_resolution).is_ok()
+            && self.map_resolution <= keep / 4.0)
+        {
             return bad(
                 "map resolution",
                 self.map_resolution,
                 "above 0 and at most a quarter of (robot radius + margin)",
             );
         }
-        if !positive(self.max_length) {
+        if positive("max length", self.max_length).is_err() {
             return bad("max length", self.max_length, "a finite length above 0");
         }
         Ok(())

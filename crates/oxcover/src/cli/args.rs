@@ -78,7 +78,7 @@ pub(crate) fn read_ron<T: serde::de::DeserializeOwned>(
         path: path.to_path_buf(),
         source: e,
     })?;
-    ron::from_str(&text).map_err(|e| Error::Argument {
+    ron::from_str(&text).map_err(|e| Error::BadParameter {
         name: what,
         value: path.display().to_string(),
         expected: format!("a valid {what} file ({e})"),

@@ -133,7 +133,7 @@ pub(crate) fn cmd_map_from_camera(a: &MapFromCameraArgs) -> Result<()> {
 
 /// A camera or profile file's own check, naming the file.
 fn in_file(path: &Path, e: &oxcover::vision::Error) -> Error {
-    Error::Argument {
+    Error::BadParameter {
         name: "file",
         value: path.display().to_string(),
         expected: format!("a usable description ({e})"),
@@ -150,7 +150,7 @@ fn parse_extent(text: &str) -> Result<(Point, Point)> {
         [x0, y0, x1, y1] if x1 > x0 && y1 > y0 && v.iter().all(|x| x.is_finite()) => {
             Ok((Point::new(*x0, *y0), Point::new(*x1, *y1)))
         }
-        _ => Err(Error::Argument {
+        _ => Err(Error::BadParameter {
             name: "--extent",
             value: text.to_string(),
             expected: "XMIN,YMIN,XMAX,YMAX in metres with XMIN < XMAX and YMIN < YMAX".into(),

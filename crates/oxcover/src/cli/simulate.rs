@@ -60,14 +60,15 @@ pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
         })?,
         None => FLOOR_CLEANER.to_string(),
     };
-    let spec = oxcover::robot::RobotSpec::from_ron(&spec_text).map_err(|e| Error::Argument {
-        name: "--robot-spec",
-        value: a
-            .robot_spec
-            .as_ref()
-            .map_or_else(|| "bundled".into(), |f| f.display().to_string()),
-        expected: format!("a valid robot description ({e})"),
-    })?;
+    let spec =
+        oxcover::robot::RobotSpec::from_ron(&spec_text).map_err(|e| Error::BadParameter {
+            name: "--robot-spec",
+            value: a
+                .robot_spec
+                .as_ref()
+                .map_or_else(|| "bundled".into(), |f| f.display().to_string()),
+            expected: format!("a valid robot description ({e})"),
+        })?;
     let (map, request) = map_and_request(p)?;
     let robot = request.robot;
     let outcome = plan(&map, &request)?;

@@ -284,7 +284,7 @@ pub(crate) fn arrow_marks(px: &[(f64, f64)], spacing: f64) -> Vec<(f64, f64, f64
 /// Writes the scene to `out`, as SVG or PNG by its extension.
 ///
 /// # Errors
-/// [`Error::Argument`] for another extension, [`Error::Write`] when the file
+/// [`Error::BadParameter`] for another extension, [`Error::Write`] when the file
 /// cannot be written.
 pub fn render_to_file(scene: &Scene<'_>, out: &Path) -> Result<()> {
     let ext = out
@@ -296,7 +296,7 @@ pub fn render_to_file(scene: &Scene<'_>, out: &Path) -> Result<()> {
         "svg" => render_svg(scene)?.into_bytes(),
         "png" => render_png(scene)?,
         _ => {
-            return Err(Error::Argument {
+            return Err(Error::BadParameter {
                 name: "--out",
                 value: out.display().to_string(),
                 expected: "a file name ending in .svg or .png".into(),
