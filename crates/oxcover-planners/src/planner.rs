@@ -18,6 +18,41 @@ use crate::error::Result;
 use crate::problem::{PlanOutput, PlannerInput};
 
 /// A coverage planner.
+///
+/// A new planner is a value implementing this trait; it sees the problem
+/// only through its [`PlannerInput`] and returns a [`PlanOutput`]. Here, a
+/// planner that drives the coverage grid's rows back and forth (complete on
+/// an open room only), run on a problem made the one way problems are made:
+///
+/// ```
+/// use oxcover_grid::{io::parse_ascii, Cell, DiscRobot};
+/// use oxcover_planners::{CoverageProblem, PlanOutput, Planner, PlannerInput, Result, Start};
+///
+/// struct Rows;
+///
+/// impl Planner for Rows {
+///     fn name(&self) -> &'static str { "rows" }
+///     fn complete(&self) -> bool { false }
+///     fn summary(&self) -> &'static str { "coverage-grid rows, back and forth" }
+///     fn plan(&self, input: &PlannerInput<'_>) -> Result<PlanOutput> {
+///         let (w, h) = (input.coarse.width(), input.coarse.height());
+///         let path = (0..h)
+///             .flat_map(|r| {
+///                 let cols: Vec<usize> = if r % 2 == 0 { (0..w).collect() } else { (0..w).rev().collect() };
+///                 cols.into_iter().map(move |c| Cell::new(r, c))
+///             })
+///             .collect();
+///         Ok(PlanOutput::Coverage(path))
+///     }
+/// }
+///
+/// let (map, _) = parse_ascii("....\n....\n....").unwrap();
+/// let problem = CoverageProblem::new(&map, DiscRobot::cell_sized(1.0), Start::First).unwrap();
+/// let plan = Rows.plan(&problem.input(0)).unwrap();
+/// let fine = problem.expand(&plan).unwrap();
+/// assert_eq!(fine.len(), 12);
+/// assert!(fine.windows(2).all(|s| s[0].manhattan(s[1]) == 1));
+/// ```
 pub trait Planner: Send + Sync {
     /// Name used on the command line.
     fn name(&self) -> &'static str;

@@ -11,9 +11,9 @@ use oxcover::pipeline::{Outputs, PlanRequest, plan, write_outputs};
 use oxcover::report::table;
 use oxcover::{DiscRobot, Error, Result};
 
-const YAML: &str = include_str!("../../../../fixtures/maps/turtlebot_simulator/simple_rooms.yaml");
+const YAML: &str = include_str!("../../assets/simple_rooms.yaml");
 const IMAGE: &[u8] =
-    include_bytes!("../../../../fixtures/maps/turtlebot_simulator/simple_rooms.png");
+    include_bytes!("../../assets/simple_rooms.png");
 const NAME: &str = "fixtures/maps/turtlebot_simulator/simple_rooms.yaml";
 
 /// Runs the demo, writing into `./oxcover-demo/`.
