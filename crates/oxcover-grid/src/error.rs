@@ -179,15 +179,7 @@ pub struct BadValue {
     pub expected: &'static str,
 }
 
-impl From<BadValue> for Error {
-    fn from(b: BadValue) -> Self {
-        Error::BadParameter {
-            name: b.name,
-            value: b.value.to_string(),
-            expected: b.expected,
-        }
-    }
-}
+crate::bad_value_into!(Error);
 
 /// `value` if it is finite and `>= 0`.
 ///
@@ -219,4 +211,22 @@ pub fn positive(name: &'static str, value: f64) -> std::result::Result<f64, BadV
             expected: "a finite number > 0",
         })
     }
+}
+
+/// Implements `From<BadValue>` for a crate's error type whose
+/// `BadParameter { name, value: String, expected: &'static str }` variant
+/// carries the refusal of the workspace's one parameter check.
+#[macro_export]
+macro_rules! bad_value_into {
+    ($error:ty) => {
+        impl From<$crate::error::BadValue> for $error {
+            fn from(b: $crate::error::BadValue) -> Self {
+                Self::BadParameter {
+                    name: b.name,
+                    value: b.value.to_string(),
+                    expected: b.expected,
+                }
+            }
+        }
+    };
 }

@@ -27,15 +27,7 @@ pub enum Error {
     Internal(String),
 }
 
-impl From<oxcover_grid::error::BadValue> for Error {
-    fn from(b: oxcover_grid::error::BadValue) -> Self {
-        Error::BadParameter {
-            name: b.name,
-            value: b.value.to_string(),
-            expected: b.expected,
-        }
-    }
-}
+oxcover_grid::bad_value_into!(Error);
 
 /// Shorthand for results of this crate.
 pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -115,16 +115,7 @@ pub(crate) fn cmd_map_from_camera(a: &MapFromCameraArgs) -> Result<()> {
     );
     let _ = writeln!(out, "wrote {}", a.out.display());
     if let Some(f) = &a.png {
-        let scene = Scene {
-            map: &map,
-            path: &[],
-            planned: None,
-            covered: None,
-            coverable: None,
-            title: "map from camera".into(),
-            overlay: None,
-            rows: Vec::new(),
-        };
+        let scene = Scene::map_only(&map, "map from camera".into(), Vec::new());
         render_to_file(&scene, f)?;
         let _ = writeln!(out, "wrote {}", f.display());
     }

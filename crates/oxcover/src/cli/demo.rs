@@ -12,8 +12,7 @@ use oxcover::report::table;
 use oxcover::{DiscRobot, Error, Result};
 
 const YAML: &str = include_str!("../../assets/simple_rooms.yaml");
-const IMAGE: &[u8] =
-    include_bytes!("../../assets/simple_rooms.png");
+const IMAGE: &[u8] = include_bytes!("../../assets/simple_rooms.png");
 const NAME: &str = "fixtures/maps/turtlebot_simulator/simple_rooms.yaml";
 
 /// Runs the demo, writing into `./oxcover-demo/`.

@@ -46,16 +46,7 @@ pub(crate) fn cmd_render(a: &RenderArgs) -> Result<()> {
             render_to_file(&scene, &a.out)?;
         }
         None => {
-            let scene = Scene {
-                map: &map,
-                path: &[],
-                planned: None,
-                covered: None,
-                coverable: None,
-                title: name,
-                overlay: None,
-                rows: map_rows(&map),
-            };
+            let scene = Scene::map_only(&map, name, map_rows(&map));
             render_to_file(&scene, &a.out)?;
         }
     }

@@ -47,8 +47,7 @@ pub(crate) struct SimulateArgs {
 }
 
 /// The bundled robot description (`fixtures/robots/floor_cleaner.ron`).
-pub(crate) const FLOOR_CLEANER: &str =
-    include_str!("../../assets/floor_cleaner.ron");
+pub(crate) const FLOOR_CLEANER: &str = include_str!("../../assets/floor_cleaner.ron");
 
 pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
     use oxcover::closed_loop::{ClosedLoop, ControllerKind, execute, to_csv};

@@ -57,6 +57,23 @@ pub struct Scene<'a> {
     pub overlay: Option<&'a Overlay>,
 }
 
+impl<'a> Scene<'a> {
+    /// A picture of the map alone, with a title and rows.
+    #[must_use]
+    pub fn map_only(map: &'a OccupancyGrid, title: String, rows: Vec<(String, String)>) -> Self {
+        Self {
+            map,
+            path: &[],
+            planned: None,
+            covered: None,
+            coverable: None,
+            title,
+            rows,
+            overlay: None,
+        }
+    }
+}
+
 /// A marker's shape.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MarkerShape {
