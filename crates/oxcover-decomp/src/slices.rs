@@ -20,6 +20,7 @@
 //! downwards); the line direction is `u = (cos θ, −sin θ)` and lines are
 //! ordered along the normal `n = (sin θ, cos θ)`.
 
+use oxcover_grid::Vector;
 use oxcover_grid::traverse::{GridPoint, traverse};
 use oxcover_grid::{Cell, Grid};
 
@@ -62,8 +63,8 @@ fn snap(v: f64) -> f64 {
 pub struct Slices {
     angle: f64,
     spacing: f64,
-    u: GridPoint,
-    n: GridPoint,
+    u: Vector,
+    n: Vector,
     offsets: Vec<f64>,
     intervals: Vec<Vec<Interval>>,
 }
@@ -79,10 +80,10 @@ impl Slices {
         } else {
             1.0
         };
-        let u = (snap(angle.cos()), snap(-angle.sin()));
-        let n = (snap(angle.sin()), snap(angle.cos()));
-        let axis_aligned = u.0 == 0.0 || u.1 == 0.0;
-        let proj = |p: GridPoint, d: GridPoint| p.0 * d.0 + p.1 * d.1;
+        let u = Vector::new(snap(angle.cos()), snap(-angle.sin()));
+        let n = Vector::new(snap(angle.sin()), snap(angle.cos()));
+        let axis_aligned = u.x == 0.0 || u.y == 0.0;
+        let proj = |p: GridPoint, d: Vector| p.x * d.x + p.y * d.y;
         let (mut nmin, mut nmax) = (f64::INFINITY, f64::NEG_INFINITY);
         // Extremes along any direction are reached at a row's first or last
         // set cell: two cells per row instead of all of them.
@@ -95,7 +96,7 @@ impl Slices {
             };
             for col in [first, last] {
                 for (dx, dy) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)] {
-                    let v = proj((col as f64 + dx, r as f64 + dy), n);
+                    let v = proj(GridPoint::new(col as f64 + dx, r as f64 + dy), n);
                     nmin = nmin.min(v);
                     nmax = nmax.max(v);
                 }
@@ -119,7 +120,12 @@ impl Slices {
         }
         // Parameter range along a line covering the whole grid.
         let (w, h) = (passable.width() as f64, passable.height() as f64);
-        let corners = [(0.0, 0.0), (w, 0.0), (0.0, h), (w, h)];
+        let corners = [
+            GridPoint::new(0.0, 0.0),
+            GridPoint::new(w, 0.0),
+            GridPoint::new(0.0, h),
+            GridPoint::new(w, h),
+        ];
         let tmin = corners
             .iter()
             .map(|&p| proj(p, u))
@@ -216,7 +222,7 @@ impl Slices {
     #[must_use]
     pub fn point(&self, i: usize, t: f64) -> GridPoint {
         let o = self.offsets[i];
-        (o * self.n.0 + t * self.u.0, o * self.n.1 + t * self.u.1)
+        GridPoint::new(o * self.n.x + t * self.u.x, o * self.n.y + t * self.u.y)
     }
 }
 
@@ -329,7 +335,7 @@ mod tests {
         let s = Slices::new(&m, 0.0, 1.0);
         assert_eq!(s.len(), 3);
         // At angle 0 the lines run along rows through the cell centres, top first.
-        let ys: Vec<f64> = (0..3).map(|i| s.point(i, 0.0).1).collect();
+        let ys: Vec<f64> = (0..3).map(|i| s.point(i, 0.0).y).collect();
         assert_eq!(ys, [0.5, 1.5, 2.5]);
         let counts: Vec<usize> = (0..3).map(|i| s.intervals(i).len()).collect();
         assert_eq!(counts.iter().sum::<usize>(), 4);

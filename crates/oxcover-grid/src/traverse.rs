@@ -10,20 +10,22 @@
 //! through walls.
 
 use crate::grid::{Cell, Grid};
+use crate::math::Point;
 
-/// A point in grid coordinates (see the module docs).
-pub type GridPoint = (f64, f64);
+/// A point in grid coordinates (see the module docs): the workspace's
+/// [`Point`], read as `x` along columns and `y` along rows (downwards).
+pub type GridPoint = Point;
 
 /// The grid coordinates of `cell`'s centre.
 #[must_use]
 pub fn cell_center(cell: Cell) -> GridPoint {
-    (cell.col as f64 + 0.5, cell.row as f64 + 0.5)
+    Point::new(cell.col as f64 + 0.5, cell.row as f64 + 0.5)
 }
 
 /// The cell containing `p`, if inside the grid.
 #[must_use]
 pub fn cell_of<T>(grid: &Grid<T>, p: GridPoint) -> Option<Cell> {
-    let (x, y) = p;
+    let (x, y) = (p.x, p.y);
     if !(x.is_finite() && y.is_finite()) || x < 0.0 || y < 0.0 {
         return None;
     }
@@ -34,14 +36,14 @@ pub fn cell_of<T>(grid: &Grid<T>, p: GridPoint) -> Option<Cell> {
 /// Distance from `m` to the segment `a b` (to `a` when the segment is a point).
 #[must_use]
 pub fn segment_distance(a: GridPoint, b: GridPoint, m: GridPoint) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let (dx, dy) = (b.x - a.x, b.y - a.y);
     let len2 = dx * dx + dy * dy;
     let t = if len2 > 0.0 {
-        (((m.0 - a.0) * dx + (m.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
+        (((m.x - a.x) * dx + (m.y - a.y) * dy) / len2).clamp(0.0, 1.0)
     } else {
         0.0
     };
-    let (ex, ey) = (a.0 + t * dx - m.0, a.1 + t * dy - m.1);
+    let (ex, ey) = (a.x + t * dx - m.x, a.y + t * dy - m.y);
     // Not `hypot`: this is a hot path of the metre planners and grid
     // coordinates are far from overflow.
     (ex * ex + ey * ey).sqrt()
@@ -58,12 +60,12 @@ pub fn traverse(
     b: GridPoint,
     mut f: impl FnMut(Option<Cell>, f64, f64) -> bool,
 ) -> bool {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    if !(a.0.is_finite() && a.1.is_finite() && dx.is_finite() && dy.is_finite()) {
+    let (dx, dy) = (b.x - a.x, b.y - a.y);
+    if !(a.x.is_finite() && a.y.is_finite() && dx.is_finite() && dy.is_finite()) {
         return f(None, 0.0, 1.0);
     }
-    let mut cx = a.0.floor() as i64;
-    let mut cy = a.1.floor() as i64;
+    let mut cx = a.x.floor() as i64;
+    let mut cy = a.y.floor() as i64;
     let step_x: i64 = if dx > 0.0 { 1 } else { -1 };
     let step_y: i64 = if dy > 0.0 { 1 } else { -1 };
     // The parameter where the segment meets the next border of each axis,
@@ -79,8 +81,8 @@ pub fn traverse(
     };
     let mut bx = if dx > 0.0 { cx + 1 } else { cx };
     let mut by = if dy > 0.0 { cy + 1 } else { cy };
-    let mut tx = border_t(bx, a.0, dx);
-    let mut ty = border_t(by, a.1, dy);
+    let mut tx = border_t(bx, a.x, dx);
+    let mut ty = border_t(by, a.y, dy);
     let mut t = 0.0;
     let cell = |cx: i64, cy: i64| {
         (cx >= 0 && cy >= 0 && (cx as usize) < width && (cy as usize) < height)
@@ -108,16 +110,16 @@ pub fn traverse(
             cy += step_y;
             bx += step_x;
             by += step_y;
-            tx = border_t(bx, a.0, dx);
-            ty = border_t(by, a.1, dy);
+            tx = border_t(bx, a.x, dx);
+            ty = border_t(by, a.y, dy);
         } else if tx < ty {
             cx += step_x;
             bx += step_x;
-            tx = border_t(bx, a.0, dx);
+            tx = border_t(bx, a.x, dx);
         } else {
             cy += step_y;
             by += step_y;
-            ty = border_t(by, a.1, dy);
+            ty = border_t(by, a.y, dy);
         }
     }
     true
@@ -154,16 +156,16 @@ mod tests {
     #[test]
     fn horizontal_and_diagonal_segments() {
         assert_eq!(
-            cells((0.5, 0.5), (3.5, 0.5)),
+            cells(Point::new(0.5, 0.5), Point::new(3.5, 0.5)),
             [(0, 0), (0, 1), (0, 2), (0, 3)]
         );
         // Through corners: both side cells, then the diagonal one.
         assert_eq!(
-            cells((0.5, 0.5), (2.5, 2.5)),
+            cells(Point::new(0.5, 0.5), Point::new(2.5, 2.5)),
             [(0, 0), (0, 1), (1, 0), (1, 1), (1, 2), (2, 1), (2, 2)]
         );
         assert_eq!(
-            cells((2.5, 0.2), (0.5, 1.8)),
+            cells(Point::new(2.5, 0.2), Point::new(0.5, 1.8)),
             [(0, 2), (0, 1), (1, 1), (1, 0)]
         );
     }
@@ -172,12 +174,18 @@ mod tests {
     fn parameters_are_monotone_and_cover_the_segment() {
         let mut last = 0.0;
         let mut n = 0;
-        traverse(10, 10, (0.3, 7.9), (9.2, 0.4), |_, t0, t1| {
-            assert!(t0 >= last - 1e-12 && t1 >= t0);
-            last = t1;
-            n += 1;
-            true
-        });
+        traverse(
+            10,
+            10,
+            Point::new(0.3, 7.9),
+            Point::new(9.2, 0.4),
+            |_, t0, t1| {
+                assert!(t0 >= last - 1e-12 && t1 >= t0);
+                last = t1;
+                n += 1;
+                true
+            },
+        );
         assert!((last - 1.0).abs() < 1e-12 && n >= 9 + 8);
     }
 
@@ -185,12 +193,32 @@ mod tests {
     fn clear_segments_respect_walls_and_the_grid_edge() {
         let mut mask = Grid::new(4, 4, true);
         mask[Cell::new(1, 2)] = false;
-        assert!(segment_clear(&mask, (0.5, 0.5), (3.5, 0.5)));
-        assert!(!segment_clear(&mask, (0.5, 1.5), (3.5, 1.5)));
-        assert!(!segment_clear(&mask, (0.5, 0.5), (4.5, 0.5)));
+        assert!(segment_clear(
+            &mask,
+            Point::new(0.5, 0.5),
+            Point::new(3.5, 0.5)
+        ));
+        assert!(!segment_clear(
+            &mask,
+            Point::new(0.5, 1.5),
+            Point::new(3.5, 1.5)
+        ));
+        assert!(!segment_clear(
+            &mask,
+            Point::new(0.5, 0.5),
+            Point::new(4.5, 0.5)
+        ));
         // A diagonal touching the blocked cell's corner is refused.
-        assert!(!segment_clear(&mask, (1.5, 2.5), (2.5, 1.5)));
-        assert!(!segment_clear(&mask, (3.5, 2.5), (2.5, 1.5)));
+        assert!(!segment_clear(
+            &mask,
+            Point::new(1.5, 2.5),
+            Point::new(2.5, 1.5)
+        ));
+        assert!(!segment_clear(
+            &mask,
+            Point::new(3.5, 2.5),
+            Point::new(2.5, 1.5)
+        ));
     }
 
     /// Every cell a sample of the segment can be assigned to (either side of
@@ -201,7 +229,7 @@ mod tests {
             seen.insert(c);
             true
         });
-        let len = (b.0 - a.0).hypot(b.1 - a.1);
+        let len = (b.x - a.x).hypot(b.y - a.y);
         let n = (len * 4.0).ceil().max(1.0) as usize;
         let sides = |v: f64| {
             let f = v.floor() as i64;
@@ -213,7 +241,7 @@ mod tests {
         };
         for k in 0..=n {
             let t = k as f64 / n as f64;
-            let (x, y) = (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1));
+            let (x, y) = (a.x + t * (b.x - a.x), a.y + t * (b.y - a.y));
             for cx in sides(x) {
                 for cy in sides(y) {
                     // Only cells the sample is inside or on the border of.
@@ -234,17 +262,41 @@ mod tests {
 
     #[test]
     fn distance_to_a_segment() {
-        assert!((segment_distance((0.0, 0.0), (4.0, 0.0), (2.0, 3.0)) - 3.0).abs() < 1e-12);
+        assert!(
+            (segment_distance(
+                Point::new(0.0, 0.0),
+                Point::new(4.0, 0.0),
+                Point::new(2.0, 3.0)
+            ) - 3.0)
+                .abs()
+                < 1e-12
+        );
         // Beyond an end: to the end point.
-        assert!((segment_distance((0.0, 0.0), (4.0, 0.0), (7.0, 4.0)) - 5.0).abs() < 1e-12);
-        assert!((segment_distance((1.0, 1.0), (1.0, 1.0), (4.0, 5.0)) - 5.0).abs() < 1e-12);
+        assert!(
+            (segment_distance(
+                Point::new(0.0, 0.0),
+                Point::new(4.0, 0.0),
+                Point::new(7.0, 4.0)
+            ) - 5.0)
+                .abs()
+                < 1e-12
+        );
+        assert!(
+            (segment_distance(
+                Point::new(1.0, 1.0),
+                Point::new(1.0, 1.0),
+                Point::new(4.0, 5.0)
+            ) - 5.0)
+                .abs()
+                < 1e-12
+        );
     }
 
     #[test]
     fn corners_met_after_many_steps_are_corners() {
         // Found on a MovingAI map: the tie at t = 0.5 was lost to rounding
         // when the border parameters were accumulated.
-        assert_samples_reported((863.5, 492.5), (856.5, 465.5), 1500);
+        assert_samples_reported(Point::new(863.5, 492.5), Point::new(856.5, 465.5), 1500);
     }
 
     proptest::proptest! {
@@ -253,7 +305,7 @@ mod tests {
             ax in 0u32..60, ay in 0u32..60, bx in 0u32..60, by in 0u32..60,
         ) {
             let c = |v: u32| f64::from(v) + 0.5;
-            assert_samples_reported((c(ax), c(ay)), (c(bx), c(by)), 60);
+            assert_samples_reported(Point::new(c(ax), c(ay)), Point::new(c(bx), c(by)), 60);
         }
     }
 }

@@ -205,8 +205,8 @@ impl RoadIndex {
     /// ties to the lower road index), and that distance.
     fn nearest(&self, p: GridPoint, keep: impl Fn(usize) -> bool) -> Option<(usize, f64)> {
         let k = self.block as f64;
-        let bx = ((p.0 / k).floor().max(0.0) as usize).min(self.bw - 1);
-        let by = ((p.1 / k).floor().max(0.0) as usize).min(self.bh - 1);
+        let bx = ((p.x / k).floor().max(0.0) as usize).min(self.bw - 1);
+        let by = ((p.y / k).floor().max(0.0) as usize).min(self.bh - 1);
         let mut best: Option<(f64, usize)> = None;
         for ring in 0..self.bw.max(self.bh) {
             // Every cell of a farther ring is at least `ring · block` away.
@@ -221,7 +221,7 @@ impl RoadIndex {
                         continue;
                     }
                     for &(r, q) in &self.buckets[y * self.bw + x] {
-                        let d = (q.0 - p.0).hypot(q.1 - p.1);
+                        let d = (q.x - p.x).hypot(q.y - p.y);
                         if best.is_none_or(|b| (d, r) < b) && keep(r) {
                             best = Some((d, r));
                         }
@@ -250,7 +250,7 @@ fn road_distance(cells: &[Cell], p: GridPoint) -> (f64, usize) {
     let mut best = (f64::INFINITY, 0);
     for (i, &c) in cells.iter().enumerate() {
         let q = cell_center(c);
-        let d = (q.0 - p.0).hypot(q.1 - p.1);
+        let d = (q.x - p.x).hypot(q.y - p.y);
         if d < best.0 {
             best = (d, i);
         }
@@ -281,14 +281,24 @@ mod tests {
         seen.sort_unstable();
         assert_eq!(seen, (0..p.roads.roads.len()).collect::<Vec<_>>());
         let h = m.height() as f64;
-        let pts: Vec<GridPoint> = p.points.iter().map(|q| (q.x, h - q.y)).collect();
+        let pts: Vec<GridPoint> = p
+            .points
+            .iter()
+            .map(|q| GridPoint::new(q.x, h - q.y))
+            .collect();
         for w in pts.windows(2) {
             assert!(segment_clear(&m, w[0], w[1]), "{w:?}");
         }
         // The outer road of a 10x6 room: around the border, back to the start.
         assert_eq!(
             &pts[..5],
-            &[(0.5, 0.5), (9.5, 0.5), (9.5, 5.5), (0.5, 5.5), (0.5, 0.5)]
+            &[
+                GridPoint::new(0.5, 0.5),
+                GridPoint::new(9.5, 0.5),
+                GridPoint::new(9.5, 5.5),
+                GridPoint::new(0.5, 5.5),
+                GridPoint::new(0.5, 0.5)
+            ]
         );
     }
 
@@ -301,7 +311,11 @@ mod tests {
             let (p, m) = plan(map, 1);
             assert!(!p.order.is_empty());
             let h = m.height() as f64;
-            let pts: Vec<GridPoint> = p.points.iter().map(|q| (q.x, h - q.y)).collect();
+            let pts: Vec<GridPoint> = p
+                .points
+                .iter()
+                .map(|q| GridPoint::new(q.x, h - q.y))
+                .collect();
             for w in pts.windows(2) {
                 assert!(segment_clear(&m, w[0], w[1]), "{w:?}");
             }

@@ -194,7 +194,7 @@ impl<'a> PathBuilder<'a> {
     pub(crate) fn into_metres(self, frame: &MapFrame) -> Vec<Point> {
         self.points
             .into_iter()
-            .map(|(x, y)| frame.position(y - 0.5, x - 0.5))
+            .map(|p| frame.position(p.y - 0.5, p.x - 0.5))
             .collect()
     }
 }
@@ -246,12 +246,12 @@ impl<'a> Clearance<'a> {
 
 /// Points of `a → b` at most a quarter of `clearance` (and 0.1 cells) apart.
 fn segment_points(a: GridPoint, b: GridPoint, clearance: f64) -> impl Iterator<Item = GridPoint> {
-    let len = (b.0 - a.0).hypot(b.1 - a.1);
+    let len = (b.x - a.x).hypot(b.y - a.y);
     let step = (clearance / 4.0).clamp(0.01, 0.1);
     let n = (len / step).ceil().max(1.0) as usize;
     (0..=n).map(move |i| {
         let t = i as f64 / n as f64;
-        (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1))
+        Point::new(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y))
     })
 }
 
@@ -288,8 +288,8 @@ pub(crate) fn point_clearance(mask: &Grid<bool>, p: GridPoint, clearance: f64) -
                 continue;
             }
             // Distance from p to the square [cc, cc+1] × [rr, rr+1].
-            let dx = (cc as f64 - p.0).max(p.0 - (cc as f64 + 1.0)).max(0.0);
-            let dy = (rr as f64 - p.1).max(p.1 - (rr as f64 + 1.0)).max(0.0);
+            let dx = (cc as f64 - p.x).max(p.x - (cc as f64 + 1.0)).max(0.0);
+            let dy = (rr as f64 - p.y).max(p.y - (rr as f64 + 1.0)).max(0.0);
             if dx * dx + dy * dy < clearance * clearance {
                 return false;
             }
@@ -310,7 +310,7 @@ fn mark_near(coarse: &CoarseGrid, points: &[GridPoint], radius: f64, wanted: &mu
     let reps = coarse.representatives();
     let k = coarse.block_size() as f64;
     let visit = |p: GridPoint| {
-        let (bc, br) = ((p.0 / k).floor() as i64, (p.1 / k).floor() as i64);
+        let (bc, br) = ((p.x / k).floor() as i64, (p.y / k).floor() as i64);
         for r in br - 1..=br + 1 {
             for c in bc - 1..=bc + 1 {
                 if r < 0 || c < 0 {
@@ -322,8 +322,11 @@ fn mark_near(coarse: &CoarseGrid, points: &[GridPoint], radius: f64, wanted: &mu
                 if !wanted[*rep] {
                     continue;
                 }
-                let (x, y) = cell_center(*rep);
-                let (dx, dy) = (x - p.0, y - p.1);
+                let (x, y) = {
+                    let c = cell_center(*rep);
+                    (c.x, c.y)
+                };
+                let (dx, dy) = (x - p.x, y - p.y);
                 if dx * dx + dy * dy <= radius * radius {
                     wanted[*rep] = false;
                 }
@@ -336,8 +339,7 @@ fn mark_near(coarse: &CoarseGrid, points: &[GridPoint], radius: f64, wanted: &mu
 /// Calls `f` on the contract's samples of the polyline `points` (grid
 /// coordinates, so a quarter of a cell apart: [`oxcover_grid::footprint`]).
 pub(crate) fn for_each_contract_sample(points: &[GridPoint], mut f: impl FnMut(GridPoint)) {
-    let pts: Vec<Point> = points.iter().map(|&(x, y)| Point::new(x, y)).collect();
-    oxcover_grid::footprint::for_each_sample(&pts, 0.25, |p| f((p.x, p.y)));
+    oxcover_grid::footprint::for_each_sample(points, 0.25, |p| f(*p));
 }
 
 #[cfg(test)]
@@ -352,12 +354,15 @@ mod tests {
     fn routes_around_walls_and_straightens() {
         let m = mask(&["......", ".####.", "......"]);
         let mut b = PathBuilder::new(&m, Cell::new(0, 0));
-        b.go_to((0.5, 2.5)).unwrap();
+        b.go_to(Point::new(0.5, 2.5)).unwrap();
         // Straight down the left column: clear.
-        assert_eq!(b.points(), [(0.5, 0.5), (0.5, 2.5)]);
-        b.go_to((5.5, 0.5)).unwrap();
+        assert_eq!(
+            b.points(),
+            [GridPoint::new(0.5, 0.5), GridPoint::new(0.5, 2.5)]
+        );
+        b.go_to(Point::new(5.5, 0.5)).unwrap();
         let pts = b.points().to_vec();
-        assert_eq!(pts.last(), Some(&(5.5, 0.5)));
+        assert_eq!(pts.last(), Some(&GridPoint::new(5.5, 0.5)));
         for w in pts.windows(2) {
             assert!(segment_clear(&m, w[0], w[1]), "{w:?}");
         }
@@ -377,6 +382,7 @@ mod tests {
             let map = oxcover_grid::random::random_density(12, 12, 0.1, seed);
             let m = map.free_mask();
             let fast = Clearance::new(&m, c);
+            let (a, b) = (GridPoint::new(a.0, a.1), GridPoint::new(b.0, b.1));
             proptest::prop_assert_eq!(fast.segment(a, b), segment_clearance(&m, a, b, c));
             proptest::prop_assert_eq!(fast.point(a), point_clearance(&m, a, c));
         }
@@ -387,7 +393,7 @@ mod tests {
         let m = mask(&["....", "....", "...."]);
         let coarse = CoarseGrid::new(&m, 1);
         let mut b = PathBuilder::new(&m, Cell::new(0, 0));
-        b.go_to((3.5, 0.5)).unwrap();
+        b.go_to(Point::new(3.5, 0.5)).unwrap();
         b.cover_leftovers(&coarse, 0.5).unwrap();
         let mut left = Grid::new(4, 3, true);
         mark_near(&coarse, b.points(), 0.5 + 1e-9, &mut left);

@@ -76,7 +76,7 @@
 use oxcover_distance::{BlockMap, CoarseToFine, Wavefront, cidt};
 use oxcover_grid::math::norm;
 use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_distance};
-use oxcover_grid::{Cell, Dir4, Grid};
+use oxcover_grid::{Cell, Dir4, Grid, Point, Vector};
 use oxcover_robot::{ArchimedeanSpiral, G2Spline, QuinticBezier};
 
 use crate::error::{Error, Result};
@@ -333,8 +333,8 @@ impl<'a> Run<'a> {
             self.plannable.width() as f64,
             self.plannable.height() as f64,
         );
-        let (c0, c1) = ((p.0 - r).floor().max(0.0), (p.0 + r).ceil().min(w));
-        let (r0, r1) = ((p.1 - r).floor().max(0.0), (p.1 + r).ceil().min(h));
+        let (c0, c1) = ((p.x - r).floor().max(0.0), (p.x + r).ceil().min(w));
+        let (r0, r1) = ((p.y - r).floor().max(0.0), (p.y + r).ceil().min(h));
         for row in r0 as usize..r1 as usize {
             for col in c0 as usize..c1 as usize {
                 let c = Cell::new(row, col);
@@ -342,8 +342,11 @@ impl<'a> Run<'a> {
                     continue;
                 }
                 let need = if self.wall[c] { self.wall_reach() } else { r };
-                let (x, y) = cell_center(c);
-                if norm(x - p.0, y - p.1) <= need + 1e-9 {
+                let (x, y) = {
+                    let c = cell_center(c);
+                    (c.x, c.y)
+                };
+                if norm(x - p.x, y - p.y) <= need + 1e-9 {
                     self.explored[c] = true;
                     self.blocks.set_target(c, false);
                 }
@@ -363,14 +366,17 @@ impl<'a> Run<'a> {
             ArchimedeanSpiral::new(radius).map_err(|e| Error::Internal(format!("spiral: {e}")))?;
         let size = self.plannable.width().max(self.plannable.height()) as f64;
         let turns = size / (2.0 * radius) + 1.0;
-        let (cx, cy) = cell_center(start);
+        let (cx, cy) = {
+            let c = cell_center(start);
+            (c.x, c.y)
+        };
         let from = self.len() - 1;
-        for (x, y) in spiral
+        for s in spiral
             .points(turns * std::f64::consts::TAU, 0.5)
             .into_iter()
             .skip(1)
         {
-            let q = (cx + x, cy + y);
+            let q = GridPoint::new(cx + s.x, cy + s.y);
             if !self.builder.clear(self.builder.last(), q) {
                 break;
             }
@@ -460,8 +466,8 @@ impl<'a> Run<'a> {
             let mut t = (0.0, 0.0);
             for k in 1..=2_isize {
                 let (a, b) = (at(i as isize + k), at(i as isize - k));
-                t.0 += k as f64 * (a.0 - b.0);
-                t.1 += k as f64 * (a.1 - b.1);
+                t.0 += k as f64 * (a.x - b.x);
+                t.1 += k as f64 * (a.y - b.y);
             }
             let norm = norm(t.0, t.1);
             let normal = (norm > 1e-9).then(|| (t.1 / norm, -t.0 / norm));
@@ -482,7 +488,7 @@ impl<'a> Run<'a> {
             let mut p = u;
             if let Some(nrm) = normal {
                 for f in [1.0, 0.75, 0.5, 0.25] {
-                    let q = (u.0 + nrm.0 * offset * f, u.1 + nrm.1 * offset * f);
+                    let q = GridPoint::new(u.x + nrm.0 * offset * f, u.y + nrm.1 * offset * f);
                     if clear(u, q) {
                         p = q;
                         break;
@@ -666,7 +672,7 @@ fn sample(seg: &QuinticBezier) -> Vec<GridPoint> {
     let c = &seg.control;
     let poly: f64 = c
         .windows(2)
-        .map(|w| norm(w[1].0 - w[0].0, w[1].1 - w[0].1))
+        .map(|w| norm(w[1].x - w[0].x, w[1].y - w[0].y))
         .sum();
     seg.sample((poly / 0.5).ceil().clamp(2.0, 200.0) as usize)
 }
@@ -679,7 +685,7 @@ fn cost(seg: &QuinticBezier, samples: &[GridPoint], originals: &[GridPoint], rea
         .map(|k| {
             let u = (k as f64 + 0.5) / n as f64;
             let d = seg.derivative(u);
-            seg.curvature(u).powi(2) * norm(d.0, d.1) / n as f64
+            seg.curvature(u).powi(2) * norm(d.x, d.y) / n as f64
         })
         .sum();
     let gap: f64 = originals
@@ -714,8 +720,8 @@ fn fillet_corners(clear: &Clearance<'_>, pts: &[GridPoint], margin: f64) -> Vec<
         return out;
     }
     let unit = |a: GridPoint, b: GridPoint| {
-        let l = norm(b.0 - a.0, b.1 - a.1);
-        ((b.0 - a.0) / l, (b.1 - a.1) / l, l)
+        let l = norm(b.x - a.x, b.y - a.y);
+        ((b.x - a.x) / l, (b.y - a.y) / l, l)
     };
     for i in 1..pts.len() - 1 {
         let (prev, p, next) = (*out.last().expect("a point"), pts[i], pts[i + 1]);
@@ -729,16 +735,16 @@ fn fillet_corners(clear: &Clearance<'_>, pts: &[GridPoint], margin: f64) -> Vec<
         let mut d = (0.5 * lin).min(0.5 * lout).min(3.0);
         let mut done = false;
         while d >= 0.05 {
-            let a = (p.0 - d * ux, p.1 - d * uy);
-            let b = (p.0 + d * vx, p.1 + d * vy);
-            let l = norm(b.0 - a.0, b.1 - a.1);
+            let a = GridPoint::new(p.x - d * ux, p.y - d * uy);
+            let b = GridPoint::new(p.x + d * vx, p.y + d * vy);
+            let l = norm(b.x - a.x, b.y - a.y);
             let seg = QuinticBezier::from_ends(
                 a,
                 b,
-                (l * ux, l * uy),
-                (l * vx, l * vy),
-                (0.0, 0.0),
-                (0.0, 0.0),
+                Vector::new(l * ux, l * uy),
+                Vector::new(l * vx, l * vy),
+                Vector::new(0.0, 0.0),
+                Vector::new(0.0, 0.0),
             );
             let samples = seg.sample(((2.0 * d) / 0.25).max(turn / 0.08).ceil().max(4.0) as usize);
             let near = |q: GridPoint| {
@@ -748,8 +754,8 @@ fn fillet_corners(clear: &Clearance<'_>, pts: &[GridPoint], margin: f64) -> Vec<
             };
             let corner_covered = (0..=8).all(|k| {
                 let t = k as f64 / 8.0;
-                near((a.0 + t * (p.0 - a.0), a.1 + t * (p.1 - a.1)))
-                    && near((p.0 + t * (b.0 - p.0), p.1 + t * (b.1 - p.1)))
+                near(Point::new(a.x + t * (p.x - a.x), a.y + t * (p.y - a.y)))
+                    && near(Point::new(p.x + t * (b.x - p.x), p.y + t * (b.y - p.y)))
             });
             if corner_covered && samples.windows(2).all(|s| clear.segment(s[0], s[1])) {
                 out.extend_from_slice(&samples);
@@ -769,7 +775,7 @@ fn fillet_corners(clear: &Clearance<'_>, pts: &[GridPoint], margin: f64) -> Vec<
 /// Whether segments `a1 a2` and `b1 b2` cross properly.
 fn crosses(a1: GridPoint, a2: GridPoint, b1: GridPoint, b2: GridPoint) -> bool {
     let orient = |p: GridPoint, q: GridPoint, r: GridPoint| {
-        (q.0 - p.0) * (r.1 - p.1) - (q.1 - p.1) * (r.0 - p.0)
+        (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x)
     };
     let (d1, d2) = (orient(b1, b2, a1), orient(b1, b2, a2));
     let (d3, d4) = (orient(a1, a2, b1), orient(a1, a2, b2));
@@ -827,7 +833,11 @@ mod tests {
         let p = crate::testing::problem(text, block);
         let plan = Smooth::new().plan_detailed(&p.input(0)).unwrap();
         let h = p.plannable().height() as f64;
-        let pts = plan.points.iter().map(|q| (q.x, h - q.y)).collect();
+        let pts = plan
+            .points
+            .iter()
+            .map(|q| GridPoint::new(q.x, h - q.y))
+            .collect();
         (plan, pts, p.plannable().clone())
     }
 
@@ -867,14 +877,18 @@ mod tests {
     #[test]
     fn fillets_round_corners_within_the_margin() {
         let m = ascii_mask(&[".........."; 10]).unwrap();
-        let pts = [(1.5, 1.5), (8.5, 1.5), (8.5, 8.5)];
+        let pts = [
+            GridPoint::new(1.5, 1.5),
+            GridPoint::new(8.5, 1.5),
+            GridPoint::new(8.5, 8.5),
+        ];
         let clear = Clearance::new(&m, CLEARANCE);
         let out = fillet_corners(&clear, &pts, 0.5);
         assert!(out.len() > 3 && out.first() == pts.first() && out.last() == pts.last());
         for w in out.windows(3) {
             let (a, b) = (
-                (w[1].0 - w[0].0, w[1].1 - w[0].1),
-                (w[2].0 - w[1].0, w[2].1 - w[1].1),
+                (w[1].x - w[0].x, w[1].y - w[0].y),
+                (w[2].x - w[1].x, w[2].y - w[1].y),
             );
             let turn = (a.0 * b.1 - a.1 * b.0).atan2(a.0 * b.0 + a.1 * b.1).abs();
             assert!(turn <= GENTLE + 1e-9, "{turn} at {:?}", w[1]);
@@ -882,7 +896,7 @@ mod tests {
         // The corner point is still within the margin of the rounded path.
         assert!(
             out.windows(2)
-                .any(|s| segment_distance(s[0], s[1], (8.5, 1.5)) <= 0.5)
+                .any(|s| segment_distance(s[0], s[1], Point::new(8.5, 1.5)) <= 0.5)
         );
         // No margin, no rounding.
         assert_eq!(fillet_corners(&clear, &pts, 0.0), pts.to_vec());
@@ -890,8 +904,18 @@ mod tests {
 
     #[test]
     fn crossing_connectors_are_detected() {
-        assert!(crosses((0.0, 0.0), (2.0, 2.0), (0.0, 2.0), (2.0, 0.0)));
-        assert!(!crosses((0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)));
+        assert!(crosses(
+            Point::new(0.0, 0.0),
+            Point::new(2.0, 2.0),
+            Point::new(0.0, 2.0),
+            Point::new(2.0, 0.0)
+        ));
+        assert!(!crosses(
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(0.0, 1.0),
+            Point::new(1.0, 1.0)
+        ));
     }
 
     /// Exact path on a tiny map: with unit cells the reach is half a cell;
@@ -912,12 +936,12 @@ mod tests {
         assert_eq!(
             &pts[wall.start..],
             &[
-                (0.5, 0.5),
-                (0.5, 2.5),
-                (2.5, 2.5),
-                (2.5, 0.5),
-                (0.5, 0.5),
-                (1.5, 1.5)
+                GridPoint::new(0.5, 0.5),
+                GridPoint::new(0.5, 2.5),
+                GridPoint::new(2.5, 2.5),
+                GridPoint::new(2.5, 0.5),
+                GridPoint::new(0.5, 0.5),
+                GridPoint::new(1.5, 1.5)
             ]
         );
         assert_eq!(p.iterations, 1);

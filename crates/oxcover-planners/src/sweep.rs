@@ -236,7 +236,7 @@ fn dist(a: GridPoint, b: GridPoint) -> f64 {
 }
 
 fn dist2(a: GridPoint, b: GridPoint) -> f64 {
-    let (dx, dy) = (a.0 - b.0, a.1 - b.1);
+    let (dx, dy) = (a.x - b.x, a.y - b.y);
     dx * dx + dy * dy
 }
 
@@ -257,11 +257,11 @@ fn order_cells(d: &SliceDecomposition, start: GridPoint, refine: bool) -> (Vec<u
                 let m = d
                     .slices
                     .point(l.line, 0.5 * (l.interval.lo + l.interval.hi));
-                x += m.0;
-                y += m.1;
+                x += m.x;
+                y += m.y;
             }
             let k = lanes.len().max(1) as f64;
-            (x / k, y / k)
+            GridPoint::new(x / k, y / k)
         })
         .collect();
     let first = (0..n)
@@ -469,7 +469,10 @@ mod tests {
 
     fn grid_points(map: &Grid<bool>, points: &[oxcover_grid::Point]) -> Vec<GridPoint> {
         let h = map.height() as f64;
-        points.iter().map(|p| (p.x, h - p.y)).collect()
+        points
+            .iter()
+            .map(|p| GridPoint::new(p.x, h - p.y))
+            .collect()
     }
 
     const BOU: Sweep = Sweep::new(Decomposition::Boustrophedon);
@@ -484,21 +487,21 @@ mod tests {
         let pts = grid_points(&m, &p.points);
         const M: f64 = 1e-4; // lane ends stay this far inside their cells
         let want = [
-            (0.5, 0.5),
-            (0.5, M),
-            (0.5, 3.0 - M),
-            (0.5, 0.5),
-            (1.5, 1.0 - M),
-            (1.5, M),
-            (2.5, M),
-            (2.5, 1.0 - M),
-            (3.5, M),
-            (3.5, 3.0 - M),
+            GridPoint::new(0.5, 0.5),
+            GridPoint::new(0.5, M),
+            GridPoint::new(0.5, 3.0 - M),
+            GridPoint::new(0.5, 0.5),
+            GridPoint::new(1.5, 1.0 - M),
+            GridPoint::new(1.5, M),
+            GridPoint::new(2.5, M),
+            GridPoint::new(2.5, 1.0 - M),
+            GridPoint::new(3.5, M),
+            GridPoint::new(3.5, 3.0 - M),
         ];
         assert_eq!(pts.len(), want.len(), "{pts:?}");
         for (a, b) in pts.iter().zip(want) {
             assert!(
-                (a.0 - b.0).abs() < 1e-6 && (a.1 - b.1).abs() < 1e-6,
+                (a.x - b.x).abs() < 1e-6 && (a.y - b.y).abs() < 1e-6,
                 "{pts:?}"
             );
         }

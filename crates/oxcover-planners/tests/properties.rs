@@ -15,7 +15,7 @@ use oxcover_planners::{CoverageProblem, PlanOutput, PlannerInput, Start, registr
 /// a coverage cell of every representative.
 fn check_metres(input: &PlannerInput<'_>, points: &[Point], complete: bool) -> Result<(), String> {
     let h = input.plannable.height() as f64;
-    let pts: Vec<(f64, f64)> = points.iter().map(|p| (p.x, h - p.y)).collect();
+    let pts: Vec<Point> = points.iter().map(|p| Point::new(p.x, h - p.y)).collect();
     let rep = input
         .coarse
         .representative(input.start)
@@ -37,7 +37,7 @@ fn check_metres(input: &PlannerInput<'_>, points: &[Point], complete: bool) -> R
         for rep in input.coarse.representatives().as_slice().iter().flatten() {
             let c = cell_center(*rep);
             let near = pts.windows(2).any(|w| segment_distance(w[0], w[1], c) <= r)
-                || pts.iter().any(|&p| (p.0 - c.0).hypot(p.1 - c.1) <= r);
+                || pts.iter().any(|&p| (p.x - c.x).hypot(p.y - c.y) <= r);
             if !near {
                 return Err(format!("missed representative {rep:?}"));
             }

@@ -13,41 +13,49 @@
 //! which the smooth planner drives and tunes.
 
 use oxcover_grid::math::norm;
+use oxcover_grid::{Point, Vector};
 
-/// A planar point or vector (m).
-pub type Vec2 = (f64, f64);
+/// Coordinates as a vector: control points and derivatives are combined
+/// alike (de Casteljau), component by component.
+type Vec2 = Vector;
 
 fn add(a: Vec2, b: Vec2) -> Vec2 {
-    (a.0 + b.0, a.1 + b.1)
+    Vector::new(a.x + b.x, a.y + b.y)
 }
 
 fn sub(a: Vec2, b: Vec2) -> Vec2 {
-    (a.0 - b.0, a.1 - b.1)
+    Vector::new(a.x - b.x, a.y - b.y)
 }
 
 fn scale(a: Vec2, k: f64) -> Vec2 {
-    (a.0 * k, a.1 * k)
+    Vector::new(a.x * k, a.y * k)
 }
 
 /// A quintic Bézier segment.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct QuinticBezier {
     /// Control points `P₀ … P₅`.
-    pub control: [Vec2; 6],
+    pub control: [Point; 6],
 }
 
 impl QuinticBezier {
     /// The segment from `p0` to `p1` with end tangents `t0`, `t1` and end
     /// second derivatives `a0`, `a1` (Lee 2011's control-point rules).
     #[must_use]
-    pub fn from_ends(p0: Vec2, p1: Vec2, t0: Vec2, t1: Vec2, a0: Vec2, a1: Vec2) -> Self {
-        let c1 = add(p0, scale(t0, 0.2));
-        let c4 = sub(p1, scale(t1, 0.2));
-        let c2 = add(scale(a0, 1.0 / 20.0), sub(scale(c1, 2.0), p0));
-        let c3 = add(scale(a1, 1.0 / 20.0), sub(scale(c4, 2.0), p1));
+    pub fn from_ends(p0: Point, p1: Point, t0: Vector, t1: Vector, a0: Vector, a1: Vector) -> Self {
+        let (q0, q1) = (p0.coords, p1.coords);
+        let c1 = add(q0, scale(t0, 0.2));
+        let c4 = sub(q1, scale(t1, 0.2));
+        let c2 = add(scale(a0, 1.0 / 20.0), sub(scale(c1, 2.0), q0));
+        let c3 = add(scale(a1, 1.0 / 20.0), sub(scale(c4, 2.0), q1));
         Self {
-            control: [p0, c1, c2, c3, c4, p1],
+            control: [p0, c1.into(), c2.into(), c3.into(), c4.into(), p1],
         }
+    }
+
+    /// The control points as vectors.
+    fn coords(&self) -> [Vec2; 6] {
+        self.control.map(|p| p.coords)
     }
 
     /// de Casteljau evaluation of the control polygon `c` at `u`.
@@ -62,22 +70,22 @@ impl QuinticBezier {
 
     /// The point at `u ∈ [0, 1]`.
     #[must_use]
-    pub fn point(&self, u: f64) -> Vec2 {
-        Self::casteljau(self.control, u)
+    pub fn point(&self, u: f64) -> Point {
+        Self::casteljau(self.coords(), u).into()
     }
 
     /// `Q'(u)`.
     #[must_use]
-    pub fn derivative(&self, u: f64) -> Vec2 {
-        let c = &self.control;
+    pub fn derivative(&self, u: f64) -> Vector {
+        let c = &self.coords();
         let d: [Vec2; 5] = std::array::from_fn(|k| scale(sub(c[k + 1], c[k]), 5.0));
         Self::casteljau(d, u)
     }
 
     /// `Q''(u)`.
     #[must_use]
-    pub fn second_derivative(&self, u: f64) -> Vec2 {
-        let c = &self.control;
+    pub fn second_derivative(&self, u: f64) -> Vector {
+        let c = &self.coords();
         let d: [Vec2; 4] =
             std::array::from_fn(|k| scale(add(sub(c[k + 2], scale(c[k + 1], 2.0)), c[k]), 20.0));
         Self::casteljau(d, u)
@@ -88,17 +96,17 @@ impl QuinticBezier {
     #[must_use]
     pub fn curvature(&self, u: f64) -> f64 {
         let (d, dd) = (self.derivative(u), self.second_derivative(u));
-        let speed = norm(d.0, d.1);
+        let speed = norm(d.x, d.y);
         if speed < 1e-12 {
             0.0
         } else {
-            (d.0 * dd.1 - d.1 * dd.0) / speed.powi(3)
+            (d.x * dd.y - d.y * dd.x) / speed.powi(3)
         }
     }
 
     /// `n + 1` points at equal steps of `u`.
     #[must_use]
-    pub fn sample(&self, n: usize) -> Vec<Vec2> {
+    pub fn sample(&self, n: usize) -> Vec<Point> {
         let n = n.max(1);
         (0..=n).map(|k| self.point(k as f64 / n as f64)).collect()
     }
@@ -129,7 +137,7 @@ impl QuinticBezier {
                     .zip(W)
                     .map(|(&x, w)| {
                         let d = self.derivative(mid + x * h / 2.0);
-                        w * norm(d.0, d.1)
+                        w * norm(d.x, d.y)
                     })
                     .sum::<f64>()
                     * h
@@ -143,11 +151,12 @@ impl QuinticBezier {
 /// tangents by centred differences (one-sided at the ends) and second
 /// derivatives by the second difference (zero at the ends).
 #[must_use]
-pub fn spline_derivatives(points: &[Vec2]) -> (Vec<Vec2>, Vec<Vec2>) {
+pub fn spline_derivatives(points: &[Point]) -> (Vec<Vector>, Vec<Vector>) {
     let n = points.len();
     if n < 2 {
-        return (vec![(0.0, 0.0); n], vec![(0.0, 0.0); n]);
+        return (vec![Vector::zeros(); n], vec![Vector::zeros(); n]);
     }
+    let points: Vec<Vec2> = points.iter().map(|p| p.coords).collect();
     let tangents = (0..n)
         .map(|i| {
             if i == 0 {
@@ -162,7 +171,7 @@ pub fn spline_derivatives(points: &[Vec2]) -> (Vec<Vec2>, Vec<Vec2>) {
     let accels = (0..n)
         .map(|i| {
             if i == 0 || i == n - 1 {
-                (0.0, 0.0)
+                Vector::zeros()
             } else {
                 add(sub(points[i + 1], scale(points[i], 2.0)), points[i - 1])
             }
@@ -174,7 +183,7 @@ pub fn spline_derivatives(points: &[Vec2]) -> (Vec<Vec2>, Vec<Vec2>) {
 /// A C² spline through `points` (at least two), one segment per pair of
 /// points, with the derivatives of [`spline_derivatives`].
 #[must_use]
-pub fn spline_through(points: &[Vec2]) -> Vec<QuinticBezier> {
+pub fn spline_through(points: &[Point]) -> Vec<QuinticBezier> {
     let (t, a) = spline_derivatives(points);
     points
         .windows(2)
@@ -192,7 +201,7 @@ pub fn spline_through(points: &[Vec2]) -> Vec<QuinticBezier> {
 /// unevenly spaced.
 #[derive(Clone, Debug)]
 pub struct G2Spline {
-    points: Vec<Vec2>,
+    points: Vec<Point>,
     /// Tangent angle at each point.
     angle: Vec<f64>,
     /// Tangent length factor at each point.
@@ -204,9 +213,9 @@ pub struct G2Spline {
 impl G2Spline {
     /// The spline through `points` (at least two).
     #[must_use]
-    pub fn through(points: &[Vec2]) -> Self {
+    pub fn through(points: &[Point]) -> Self {
         let n = points.len();
-        let dir = |a: Vec2, b: Vec2| (b.1 - a.1).atan2(b.0 - a.0);
+        let dir = |a: Point, b: Point| (b.y - a.y).atan2(b.x - a.x);
         let angle = (0..n)
             .map(|i| {
                 if i == 0 {
@@ -226,9 +235,9 @@ impl G2Spline {
                     return 0.0;
                 }
                 let (a, b, c) = (points[i - 1], points[i], points[i + 1]);
-                let cross = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
-                let (ab, bc) = (norm(b.0 - a.0, b.1 - a.1), norm(c.0 - b.0, c.1 - b.1));
-                let d = ab * bc * norm(c.0 - a.0, c.1 - a.1);
+                let cross = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+                let (ab, bc) = (norm(b.x - a.x, b.y - a.y), norm(c.x - b.x, c.y - b.y));
+                let d = ab * bc * norm(c.x - a.x, c.y - a.y);
                 // |κ|·chord ≤ 2 on both sides, so a sharp point cannot make a
                 // segment loop (the same value on both sides keeps G²).
                 let limit = 2.0 / ab.min(bc).max(1e-9);
@@ -249,7 +258,7 @@ impl G2Spline {
 
     /// Point `i`.
     #[must_use]
-    pub fn point(&self, i: usize) -> Vec2 {
+    pub fn point(&self, i: usize) -> Point {
         self.points[i]
     }
 
@@ -258,13 +267,16 @@ impl G2Spline {
     #[must_use]
     pub fn segment(&self, i: usize, k: f64) -> QuinticBezier {
         let (p0, p1) = (self.points[i], self.points[i + 1]);
-        let chord = norm(p1.0 - p0.0, p1.1 - p0.1);
+        let chord = norm(p1.x - p0.x, p1.y - p0.y);
         let end = |j: usize| {
             let len = chord * self.scale[j] * k;
             let (sin, cos) = self.angle[j].sin_cos();
             // Curvature κ needs a normal second derivative κ·|T|².
             let a = self.kappa[j] * len * len;
-            ((len * cos, len * sin), (-a * sin, a * cos))
+            (
+                Vector::new(len * cos, len * sin),
+                Vector::new(-a * sin, a * cos),
+            )
         };
         let ((t0, a0), (t1, a1)) = (end(i), end(i + 1));
         QuinticBezier::from_ends(p0, p1, t0, t1, a0, a1)
@@ -276,7 +288,7 @@ impl G2Spline {
     pub fn adjust(&mut self, base: &G2Spline, i: usize, x: &[f64; 4]) {
         let (sin, cos) = base.angle[i].sin_cos();
         let p = base.points[i];
-        self.points[i] = (p.0 - x[0] * sin, p.1 + x[0] * cos);
+        self.points[i] = Point::new(p.x - x[0] * sin, p.y + x[0] * cos);
         self.angle[i] = base.angle[i] + x[1];
         self.scale[i] = base.scale[i] * (1.0 + x[2]);
         self.kappa[i] = base.kappa[i] * (1.0 + x[3]);
@@ -287,42 +299,49 @@ impl G2Spline {
 mod tests {
     use super::*;
 
-    fn near(a: Vec2, b: Vec2, tol: f64) -> bool {
-        norm(a.0 - b.0, a.1 - b.1) < tol
+    /// Whether two points (or two vectors, as points) are within `tol`.
+    fn near(a: impl Into<Point>, b: impl Into<Point>, tol: f64) -> bool {
+        let (a, b) = (a.into(), b.into());
+        norm(a.x - b.x, a.y - b.y) < tol
     }
 
     #[test]
     fn ends_tangents_and_second_derivatives_are_the_given_ones() {
         let q = QuinticBezier::from_ends(
-            (0.0, 0.0),
-            (2.0, 1.0),
-            (1.0, 0.5),
-            (0.0, 3.0),
-            (0.3, -0.2),
-            (1.5, 0.7),
+            Point::new(0.0, 0.0),
+            Point::new(2.0, 1.0),
+            Vector::new(1.0, 0.5),
+            Vector::new(0.0, 3.0),
+            Vector::new(0.3, -0.2),
+            Vector::new(1.5, 0.7),
         );
-        assert!(near(q.point(0.0), (0.0, 0.0), 1e-12) && near(q.point(1.0), (2.0, 1.0), 1e-12));
+        assert!(near(q.point(0.0), Point::new(0.0, 0.0), 1e-12));
+        assert!(near(q.point(1.0), Point::new(2.0, 1.0), 1e-12));
         assert!(
-            near(q.derivative(0.0), (1.0, 0.5), 1e-12)
-                && near(q.derivative(1.0), (0.0, 3.0), 1e-12)
+            near(q.derivative(0.0), Vector::new(1.0, 0.5), 1e-12)
+                && near(q.derivative(1.0), Vector::new(0.0, 3.0), 1e-12)
         );
-        assert!(near(q.second_derivative(0.0), (0.3, -0.2), 1e-12));
-        assert!(near(q.second_derivative(1.0), (1.5, 0.7), 1e-12));
+        assert!(near(
+            q.second_derivative(0.0),
+            Vector::new(0.3, -0.2),
+            1e-12
+        ));
+        assert!(near(q.second_derivative(1.0), Vector::new(1.5, 0.7), 1e-12));
         // Derivatives agree with finite differences inside.
         let (u, h) = (0.37, 1e-6);
-        let fd = scale(sub(q.point(u + h), q.point(u - h)), 0.5 / h);
+        let fd = (q.point(u + h) - q.point(u - h)) * (0.5 / h);
         assert!(near(fd, q.derivative(u), 1e-6));
     }
 
     #[test]
     fn a_straight_segment_has_its_length_and_no_curvature() {
         let q = QuinticBezier::from_ends(
-            (0.0, 0.0),
-            (3.0, 4.0),
-            (3.0, 4.0),
-            (3.0, 4.0),
-            (0.0, 0.0),
-            (0.0, 0.0),
+            Point::new(0.0, 0.0),
+            Point::new(3.0, 4.0),
+            Vector::new(3.0, 4.0),
+            Vector::new(3.0, 4.0),
+            Vector::new(0.0, 0.0),
+            Vector::new(0.0, 0.0),
         );
         assert!((q.length() - 5.0).abs() < 1e-9);
         assert!(q.curvature(0.5).abs() < 1e-12);
@@ -332,7 +351,13 @@ mod tests {
 
     #[test]
     fn splines_are_c2_at_their_joins() {
-        let pts = [(0.0, 0.0), (1.0, 0.2), (1.8, 1.0), (1.5, 2.0), (0.5, 2.4)];
+        let pts = [
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.2),
+            Point::new(1.8, 1.0),
+            Point::new(1.5, 2.0),
+            Point::new(0.5, 2.4),
+        ];
         let s = spline_through(&pts);
         assert_eq!(s.len(), 4);
         for w in s.windows(2) {
@@ -356,29 +381,29 @@ mod tests {
     #[test]
     fn spline_is_g2_at_joins_and_does_not_loop_on_uneven_points() {
         let pts = [
-            (0.0, 0.0),
-            (0.3, 0.0),
-            (5.0, 1.0),
-            (5.4, 1.3),
-            (6.0, 4.0),
-            (2.0, 5.0),
+            Point::new(0.0, 0.0),
+            Point::new(0.3, 0.0),
+            Point::new(5.0, 1.0),
+            Point::new(5.4, 1.3),
+            Point::new(6.0, 4.0),
+            Point::new(2.0, 5.0),
         ];
         let sp = G2Spline::through(&pts);
         for (i, p) in pts.iter().enumerate().take(pts.len() - 1).skip(1) {
             let (a, b) = (sp.segment(i - 1, 1.0), sp.segment(i, 1.0));
             let (da, db) = (a.derivative(1.0), b.derivative(0.0));
-            let cross = da.0 * db.1 - da.1 * db.0;
-            assert!(cross.abs() < 1e-9 * norm(da.0, da.1) * norm(db.0, db.1));
-            assert!(da.0 * db.0 + da.1 * db.1 > 0.0, "same direction at {i}");
+            let cross = da.x * db.y - da.y * db.x;
+            assert!(cross.abs() < 1e-9 * norm(da.x, da.y) * norm(db.x, db.y));
+            assert!(da.x * db.x + da.y * db.y > 0.0, "same direction at {i}");
             assert!(
                 (a.curvature(1.0) - b.curvature(0.0)).abs() < 1e-9,
                 "curvature at {i}"
             );
-            assert!((a.point(1.0).0 - p.0).abs() < 1e-12);
+            assert!((a.point(1.0).x - p.x).abs() < 1e-12);
         }
         let poly: f64 = pts
             .windows(2)
-            .map(|w| norm(w[1].0 - w[0].0, w[1].1 - w[0].1))
+            .map(|w| norm(w[1].x - w[0].x, w[1].y - w[0].y))
             .sum();
         let curve: f64 = (0..pts.len() - 1)
             .map(|i| sp.segment(i, 1.0).length())

@@ -3,8 +3,8 @@
 //! In the robot's start frame (origin at the start, x along its heading):
 //! `x = r cos θ`, `y = r sin θ`.
 
-use crate::bezier::Vec2;
 use crate::error::{Result, positive};
+use oxcover_grid::Point;
 
 /// An outward Archimedean spiral for a tool of radius `R`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -31,9 +31,9 @@ impl ArchimedeanSpiral {
 
     /// The point at accumulated angle `theta` (start frame).
     #[must_use]
-    pub fn point(&self, theta: f64) -> Vec2 {
+    pub fn point(&self, theta: f64) -> Point {
         let r = self.a() * theta.abs();
-        (r * theta.cos(), r * theta.sin())
+        Point::new(r * theta.cos(), r * theta.sin())
     }
 
     /// Arc length from the centre to `theta` (closed form:
@@ -47,7 +47,7 @@ impl ArchimedeanSpiral {
     /// Points from the centre out to `theta_max`, no two more than `step`
     /// metres of arc apart.
     #[must_use]
-    pub fn points(&self, theta_max: f64, step: f64) -> Vec<Vec2> {
+    pub fn points(&self, theta_max: f64, step: f64) -> Vec<Point> {
         let theta_max = if theta_max.is_finite() {
             theta_max.abs()
         } else {
@@ -58,7 +58,7 @@ impl ArchimedeanSpiral {
         } else {
             self.tool_radius / 4.0
         };
-        let mut out = vec![(0.0, 0.0)];
+        let mut out = vec![Point::origin()];
         let mut theta: f64 = 0.0;
         while theta < theta_max {
             // ds/dθ = a√(1+θ²) grows with θ: taken at the step's far end,
@@ -83,10 +83,10 @@ mod tests {
         let s = ArchimedeanSpiral::new(0.15).unwrap();
         for theta in [0.5, 2.0, 7.0] {
             let (a, b) = (s.point(theta), s.point(theta + 2.0 * PI));
-            let gap = b.0.hypot(b.1) - a.0.hypot(a.1);
+            let gap = b.x.hypot(b.y) - a.x.hypot(a.y);
             assert!((gap - 0.3).abs() < 1e-12, "{gap}");
         }
-        assert_eq!(s.point(0.0), (0.0, 0.0));
+        assert_eq!(s.point(0.0), Point::new(0.0, 0.0));
         assert!(ArchimedeanSpiral::new(-1.0).is_err());
     }
 
@@ -96,13 +96,13 @@ mod tests {
         let pts = s.points(6.0 * PI, 0.005);
         let poly: f64 = pts
             .windows(2)
-            .map(|w| (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1))
+            .map(|w| (w[1].x - w[0].x).hypot(w[1].y - w[0].y))
             .sum();
         let exact = s.length(6.0 * PI);
         assert!((poly - exact).abs() / exact < 1e-4, "{poly} vs {exact}");
         assert!(
             pts.windows(2)
-                .all(|w| (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1) <= 0.005 + 1e-9)
+                .all(|w| (w[1].x - w[0].x).hypot(w[1].y - w[0].y) <= 0.005 + 1e-9)
         );
     }
 }

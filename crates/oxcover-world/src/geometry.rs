@@ -13,7 +13,7 @@
 //!   logarithmic in the number of boxes.
 
 use oxcover_grid::traverse::segment_distance;
-use oxcover_grid::{Cell, OccupancyGrid};
+use oxcover_grid::{Cell, OccupancyGrid, Point};
 use parry2d::math::{Pose, Vector};
 use parry2d::query::{Ray, RayCast};
 use parry2d::shape::{Ball, Compound, Polyline, SharedShape};
@@ -186,7 +186,11 @@ impl WorldGeometry {
     pub fn clearance(&self, p: (f64, f64)) -> (f64, usize) {
         let mut best = (f64::INFINITY, 0);
         for &(a, b, s) in &self.segments {
-            let d = segment_distance(a, b, p);
+            let d = segment_distance(
+                Point::new(a.0, a.1),
+                Point::new(b.0, b.1),
+                Point::new(p.0, p.1),
+            );
             if d < best.0 {
                 best = (d, s);
             }

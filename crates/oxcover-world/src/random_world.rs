@@ -11,6 +11,7 @@
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+use oxcover_grid::Point;
 use oxcover_grid::traverse::segment_distance;
 
 use crate::geometry::WorldGeometry;
@@ -182,6 +183,8 @@ fn polygon_distance(p: &[(f64, f64)], q: &[(f64, f64)]) -> f64 {
             if segments_cross(a, b, c, d) {
                 return 0.0;
             }
+            let p = |v: (f64, f64)| Point::new(v.0, v.1);
+            let (a, b, c, d) = (p(a), p(b), p(c), p(d));
             best = best
                 .min(segment_distance(c, d, a))
                 .min(segment_distance(c, d, b))

@@ -58,7 +58,7 @@ fn cells_panel(d: &SliceDecomposition, plannable: &Grid<bool>, free: &Grid<bool>
                 let p = d.slices.point(lane.line, t);
                 let mut o = -s / 2.0;
                 while o < s / 2.0 {
-                    let q = (p.0 + o * normal.0, p.1 + o * normal.1);
+                    let q = oxcover_grid::Point::new(p.x + o * normal.0, p.y + o * normal.1);
                     if let Some(c) = oxcover_grid::traverse::cell_of(plannable, q)
                         && plannable[c]
                     {
@@ -85,7 +85,7 @@ fn graph_panel(d: &SliceDecomposition, plannable: &Grid<bool>, free: &Grid<bool>
                 let p = d
                     .slices
                     .point(l.line, (l.interval.lo + l.interval.hi) / 2.0);
-                (sx + p.0, sy + p.1)
+                (sx + p.x, sy + p.y)
             });
             (sx / n, sy / n)
         })
@@ -93,7 +93,7 @@ fn graph_panel(d: &SliceDecomposition, plannable: &Grid<bool>, free: &Grid<bool>
     let mut dot = |p: (f64, f64), r: i64, colour: [u8; 3]| {
         for dy in -r..=r {
             for dx in -r..=r {
-                let q = (p.0 + dx as f64, p.1 + dy as f64);
+                let q = oxcover_grid::Point::new(p.0 + dx as f64, p.1 + dy as f64);
                 if let Some(c) = oxcover_grid::traverse::cell_of(&px, q) {
                     px[c] = colour;
                 }
