@@ -3,6 +3,7 @@
 //! closed loop covers at least 95 % with no collision of the robot disc.
 
 use oxcover_grid::io::{ReadOptions, read_map};
+use oxcover_grid::{Point, Vector};
 use xtask::reproduce::lee2011::{self, Shape};
 
 #[test]
@@ -22,28 +23,32 @@ fn committed_maps_match_the_world_files() {
 fn shapes_contain_what_they_should() {
     // A U (concave): its bay is outside, its arms inside.
     let u = Shape::Polygon(vec![
-        (0.0, 0.0),
-        (3.0, 0.0),
-        (3.0, 3.0),
-        (2.0, 3.0),
-        (2.0, 1.0),
-        (1.0, 1.0),
-        (1.0, 3.0),
-        (0.0, 3.0),
+        Point::new(0.0, 0.0),
+        Point::new(3.0, 0.0),
+        Point::new(3.0, 3.0),
+        Point::new(2.0, 3.0),
+        Point::new(2.0, 1.0),
+        Point::new(1.0, 1.0),
+        Point::new(1.0, 3.0),
+        Point::new(0.0, 3.0),
     ]);
-    assert!(u.contains((0.5, 2.5)) && u.contains((2.5, 2.5)) && u.contains((1.5, 0.5)));
-    assert!(!u.contains((1.5, 2.0)) && !u.contains((4.0, 1.0)));
+    assert!(
+        u.contains(Point::new(0.5, 2.5))
+            && u.contains(Point::new(2.5, 2.5))
+            && u.contains(Point::new(1.5, 0.5))
+    );
+    assert!(!u.contains(Point::new(1.5, 2.0)) && !u.contains(Point::new(4.0, 1.0)));
     let r = Shape::Rect {
-        centre: (0.0, 0.0),
-        size: (2.0, 1.0),
+        centre: Point::new(0.0, 0.0),
+        size: Vector::new(2.0, 1.0),
         angle_deg: 90.0,
     };
-    assert!(r.contains((0.0, 0.9)) && !r.contains((0.9, 0.0)));
+    assert!(r.contains(Point::new(0.0, 0.9)) && !r.contains(Point::new(0.9, 0.0)));
     let c = Shape::Circle {
-        centre: (1.0, 1.0),
+        centre: Point::new(1.0, 1.0),
         radius: 0.5,
     };
-    assert!(c.contains((1.3, 1.3)) && !c.contains((1.4, 1.4)));
+    assert!(c.contains(Point::new(1.3, 1.3)) && !c.contains(Point::new(1.4, 1.4)));
 }
 
 /// The target on the most cluttered room, first seeded start.

@@ -34,16 +34,17 @@
 use crate::geometry::RayCaster;
 use crate::sensors::RangeSensor;
 use crate::world::CriticalKind;
+use oxcover_grid::Point;
 
 /// The three hit points (m, world frame).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Returns {
     /// Lagging ray's hit.
-    pub lag: (f64, f64),
+    pub lag: Point,
     /// Centre ray's hit.
-    pub centre: (f64, f64),
+    pub centre: Point,
     /// Leading ray's hit.
-    pub lead: (f64, f64),
+    pub lead: Point,
 }
 
 /// What three rays say about the boundary.
@@ -107,13 +108,13 @@ impl ThreeRayDetector {
         &self,
         sensor: &mut RangeSensor,
         caster: &impl RayCaster,
-        robot: (f64, f64),
+        robot: Point,
         centre_angle: f64,
     ) -> Option<Returns> {
         let mut hit = |a: f64| {
             let r = sensor.read(caster, robot, a);
             r.surface
-                .map(|_| (robot.0 + r.range * a.cos(), robot.1 + r.range * a.sin()))
+                .map(|_| Point::new(robot.x + r.range * a.cos(), robot.y + r.range * a.sin()))
         };
         Some(Returns {
             lag: hit(centre_angle - self.spread)?,
@@ -124,9 +125,9 @@ impl ThreeRayDetector {
 
     /// The verdict on three returns seen from `robot`.
     #[must_use]
-    pub fn classify(&self, robot: (f64, f64), r: &Returns) -> Detection {
-        let line1 = (r.centre.0 - r.lag.0, r.centre.1 - r.lag.1);
-        let line2 = (r.lead.0 - r.centre.0, r.lead.1 - r.centre.1);
+    pub fn classify(&self, robot: Point, r: &Returns) -> Detection {
+        let line1 = (r.centre.x - r.lag.x, r.centre.y - r.lag.y);
+        let line2 = (r.lead.x - r.centre.x, r.lead.y - r.centre.y);
         let (n1, n2) = (line1.0.hypot(line1.1), line2.0.hypot(line2.1));
         if n1 < 1e-9 || n2 < 1e-9 {
             return Detection::Blind;
@@ -134,7 +135,7 @@ impl ThreeRayDetector {
         // Eqs. 1–3: result = line₁ · line₂ against |line₁| |line₂|.
         let result = line1.0 * line2.0 + line1.1 * line2.1;
         if result >= self.angle_tolerance.cos() * n1 * n2 {
-            let (dx, dy) = (r.lead.0 - r.lag.0, r.lead.1 - r.lag.1);
+            let (dx, dy) = (r.lead.x - r.lag.x, r.lead.y - r.lag.y);
             return if dx.abs() <= self.angle_tolerance.sin() * dx.hypot(dy) {
                 Detection::SliceParallel
             } else {
@@ -142,10 +143,10 @@ impl ThreeRayDetector {
             };
         }
         let tol = self.x_tolerance;
-        let (dx1, dx2) = (r.lag.0 - r.centre.0, r.lead.0 - r.centre.0);
+        let (dx1, dx2) = (r.lag.x - r.centre.x, r.lead.x - r.centre.x);
         let g = (dx1 + dx2).signum();
         let extremal = dx1 * g >= -tol && dx2 * g >= -tol && dx1.abs().max(dx2.abs()) > tol;
-        let ahead = r.centre.0 - robot.0;
+        let ahead = r.centre.x - robot.x;
         if !extremal || ahead.abs() <= tol {
             return Detection::Corner;
         }
@@ -160,27 +161,27 @@ mod tests {
     use crate::world::{Convexity, Event, World};
 
     /// The hit of a ray from `p` at `angle` on the polyline `v` (closed).
-    fn hit(p: (f64, f64), angle: f64, v: &[(f64, f64)]) -> (f64, f64) {
+    fn hit(p: Point, angle: f64, v: &[Point]) -> Point {
         let d = (angle.cos(), angle.sin());
         let mut best = f64::INFINITY;
         for i in 0..v.len() {
             let (a, b) = (v[i], v[(i + 1) % v.len()]);
-            let e = (b.0 - a.0, b.1 - a.1);
+            let e = (b.x - a.x, b.y - a.y);
             let den = d.0 * e.1 - d.1 * e.0;
             if den.abs() < 1e-12 {
                 continue;
             }
-            let w = (a.0 - p.0, a.1 - p.1);
+            let w = (a.x - p.x, a.y - p.y);
             let t = (w.0 * e.1 - w.1 * e.0) / den;
             let s = (w.0 * d.1 - w.1 * d.0) / den;
             if t > 0.0 && (0.0..=1.0).contains(&s) {
                 best = best.min(t);
             }
         }
-        (p.0 + best * d.0, p.1 + best * d.1)
+        Point::new(p.x + best * d.0, p.y + best * d.1)
     }
 
-    fn returns(p: (f64, f64), centre: f64, v: &[(f64, f64)]) -> Returns {
+    fn returns(p: Point, centre: f64, v: &[Point]) -> Returns {
         let s = ThreeRayDetector::default().spread;
         Returns {
             lag: hit(p, centre - s, v),
@@ -199,82 +200,99 @@ mod tests {
         // A wall at 30° to the slices, seen square on and obliquely.
         let t = 30f64.to_radians().tan();
         let w = [
-            (-20.0, -20.0 * t),
-            (20.0, 20.0 * t),
-            (20.0, -20.0),
-            (-20.0, -20.0),
+            Point::new(-20.0, -20.0 * t),
+            Point::new(20.0, 20.0 * t),
+            Point::new(20.0, -20.0),
+            Point::new(-20.0, -20.0),
         ];
         for centre in [-95f64, -120.0, -60.0] {
-            let r = returns((5.0, 5.0), centre.to_radians(), &w);
+            let r = returns(Point::new(5.0, 5.0), centre.to_radians(), &w);
             assert_eq!(
-                det.classify((5.0, 5.0), &r),
+                det.classify(Point::new(5.0, 5.0), &r),
                 Detection::Straight,
                 "{centre}"
             );
         }
         // A wall along y is parallel to the slices.
-        let w = [(2.0, -5.0), (2.0, 5.0), (3.0, 5.0), (3.0, -5.0)];
-        let r = returns((1.7, 0.3), 0.0, &w);
-        assert_eq!(det.classify((1.7, 0.3), &r), Detection::SliceParallel);
+        let w = [
+            Point::new(2.0, -5.0),
+            Point::new(2.0, 5.0),
+            Point::new(3.0, 5.0),
+            Point::new(3.0, -5.0),
+        ];
+        let r = returns(Point::new(1.7, 0.3), 0.0, &w);
+        assert_eq!(
+            det.classify(Point::new(1.7, 0.3), &r),
+            Detection::SliceParallel
+        );
     }
 
     #[test]
     fn convex_corners_are_critical_when_extremal() {
         let det = ThreeRayDetector::default();
-        let diamond = [(1.0, 0.0), (2.0, -1.0), (3.0, 0.0), (2.0, 1.0)];
+        let diamond = [
+            Point::new(1.0, 0.0),
+            Point::new(2.0, -1.0),
+            Point::new(3.0, 0.0),
+            Point::new(2.0, 1.0),
+        ];
         // Left vertex seen from the left: the obstacle appears, IN convex.
-        let r = returns((0.7, 0.0), 0.0, &diamond);
-        assert_eq!(r.centre, (1.0, 0.0));
+        let r = returns(Point::new(0.7, 0.0), 0.0, &diamond);
+        assert_eq!(r.centre, Point::new(1.0, 0.0));
         assert_eq!(
-            det.classify((0.7, 0.0), &r),
+            det.classify(Point::new(0.7, 0.0), &r),
             kind(Event::In, Convexity::Convex)
         );
         // Right vertex seen from the right: the obstacle ends, OUT convex.
-        let r = returns((3.3, 0.0), std::f64::consts::PI, &diamond);
+        let r = returns(Point::new(3.3, 0.0), std::f64::consts::PI, &diamond);
         assert_eq!(
-            det.classify((3.3, 0.0), &r),
+            det.classify(Point::new(3.3, 0.0), &r),
             kind(Event::Out, Convexity::Convex)
         );
         // The top vertex seen from above is a corner, not critical.
-        let r = returns((2.0, 1.3), -std::f64::consts::FRAC_PI_2, &diamond);
-        assert_eq!(det.classify((2.0, 1.3), &r), Detection::Corner);
+        let r = returns(Point::new(2.0, 1.3), -std::f64::consts::FRAC_PI_2, &diamond);
+        assert_eq!(det.classify(Point::new(2.0, 1.3), &r), Detection::Corner);
         // A staircase corner: one edge goes back in x, the other on.
         let stair = [
-            (-0.5, 1.0),
-            (0.0, 0.0),
-            (1.0, -0.2),
-            (1.0, -2.0),
-            (-2.0, -2.0),
-            (-2.0, 1.0),
+            Point::new(-0.5, 1.0),
+            Point::new(0.0, 0.0),
+            Point::new(1.0, -0.2),
+            Point::new(1.0, -2.0),
+            Point::new(-2.0, -2.0),
+            Point::new(-2.0, 1.0),
         ];
-        let r = returns((0.5, 0.5), -3.0 * std::f64::consts::FRAC_PI_4, &stair);
-        assert!((r.centre.0.abs() + r.centre.1.abs()) < 1e-9, "{r:?}");
-        assert_eq!(det.classify((0.5, 0.5), &r), Detection::Corner);
+        let r = returns(
+            Point::new(0.5, 0.5),
+            -3.0 * std::f64::consts::FRAC_PI_4,
+            &stair,
+        );
+        assert!((r.centre.x.abs() + r.centre.y.abs()) < 1e-9, "{r:?}");
+        assert_eq!(det.classify(Point::new(0.5, 0.5), &r), Detection::Corner);
     }
 
     #[test]
     fn concave_corners_are_classified_concave() {
         let det = ThreeRayDetector::default();
-        // The end of a pocket opening to -x: apex at (1, 0). Free space dies
+        // The end of a pocket opening to -x: apex at Point::new(1.0, 0.0). Free space dies
         // there: OUT concave.
         let pocket = [
-            (1.0, 0.0),
-            (-3.0, 2.0),
-            (-3.0, 5.0),
-            (5.0, 5.0),
-            (5.0, -5.0),
-            (-3.0, -2.0),
+            Point::new(1.0, 0.0),
+            Point::new(-3.0, 2.0),
+            Point::new(-3.0, 5.0),
+            Point::new(5.0, 5.0),
+            Point::new(5.0, -5.0),
+            Point::new(-3.0, -2.0),
         ];
-        let r = returns((0.6, 0.0), 0.0, &pocket);
+        let r = returns(Point::new(0.6, 0.0), 0.0, &pocket);
         assert_eq!(
-            det.classify((0.6, 0.0), &r),
+            det.classify(Point::new(0.6, 0.0), &r),
             kind(Event::Out, Convexity::Concave)
         );
         // Mirrored, a pocket opening to +x: free space is born, IN concave.
-        let mirrored: Vec<_> = pocket.iter().map(|p| (-p.0, p.1)).collect();
-        let r = returns((-0.6, 0.0), std::f64::consts::PI, &mirrored);
+        let mirrored: Vec<_> = pocket.iter().map(|p| Point::new(-p.x, p.y)).collect();
+        let r = returns(Point::new(-0.6, 0.0), std::f64::consts::PI, &mirrored);
         assert_eq!(
-            det.classify((-0.6, 0.0), &r),
+            det.classify(Point::new(-0.6, 0.0), &r),
             kind(Event::In, Convexity::Concave)
         );
     }
@@ -282,30 +300,40 @@ mod tests {
     #[test]
     fn noise_within_the_tolerance_keeps_the_verdict() {
         let det = ThreeRayDetector::for_noise(0.002, 0.25);
-        let diamond = [(1.0, 0.0), (2.0, -1.0), (3.0, 0.0), (2.0, 1.0)];
-        let wall = [(0.0, -5.0), (4.0, 5.0), (9.0, 5.0), (9.0, -5.0)];
+        let diamond = [
+            Point::new(1.0, 0.0),
+            Point::new(2.0, -1.0),
+            Point::new(3.0, 0.0),
+            Point::new(2.0, 1.0),
+        ];
+        let wall = [
+            Point::new(0.0, -5.0),
+            Point::new(4.0, 5.0),
+            Point::new(9.0, 5.0),
+            Point::new(9.0, -5.0),
+        ];
         // Every combination of ±2 mm along the rays (one standard deviation
         // is 2 mm: these are the ±1σ corners of the noise box).
         for signs in 0..27 {
             let s = |k: u32| f64::from((signs / 3u32.pow(k)) % 3) - 1.0;
-            let push = |p: (f64, f64), from: (f64, f64), e: f64| {
-                let (dx, dy) = (p.0 - from.0, p.1 - from.1);
+            let push = |p: Point, from: Point, e: f64| {
+                let (dx, dy) = (p.x - from.x, p.y - from.y);
                 let n = dx.hypot(dy);
-                (p.0 + e * dx / n, p.1 + e * dy / n)
+                Point::new(p.x + e * dx / n, p.y + e * dy / n)
             };
-            let noisy = |r: Returns, from: (f64, f64)| Returns {
+            let noisy = |r: Returns, from: Point| Returns {
                 lag: push(r.lag, from, 0.002 * s(0)),
                 centre: push(r.centre, from, 0.002 * s(1)),
                 lead: push(r.lead, from, 0.002 * s(2)),
             };
-            let p = (0.75, 0.0);
+            let p = Point::new(0.75, 0.0);
             let r = noisy(returns(p, 0.0, &diamond), p);
             assert_eq!(
                 det.classify(p, &r),
                 kind(Event::In, Convexity::Convex),
                 "{signs}"
             );
-            let p = (1.0, -1.0);
+            let p = Point::new(1.0, -1.0);
             let r = noisy(returns(p, 0.3, &wall), p);
             assert!(
                 matches!(det.classify(p, &r), Detection::Straight),
@@ -326,13 +354,16 @@ mod tests {
         let g = WorldGeometry::new(&w);
         let det = ThreeRayDetector::default();
         let mut s = RangeSensor::ring(1, 5.0, 0.0, 0).unwrap();
-        let r = det.fire(&mut s, &g, (1.75, 2.0), 0.0).unwrap();
+        let r = det.fire(&mut s, &g, Point::new(1.75, 2.0), 0.0).unwrap();
         assert_eq!(
-            det.classify((1.75, 2.0), &r),
+            det.classify(Point::new(1.75, 2.0), &r),
             kind(Event::In, Convexity::Convex)
         );
-        assert!(det.fire(&mut s, &g, (1.0, 2.0), 0.0).is_some());
+        assert!(det.fire(&mut s, &g, Point::new(1.0, 2.0), 0.0).is_some());
         let mut short = RangeSensor::ring(1, 0.5, 0.0, 0).unwrap();
-        assert!(det.fire(&mut short, &g, (1.0, 2.0), 0.0).is_none());
+        assert!(
+            det.fire(&mut short, &g, Point::new(1.0, 2.0), 0.0)
+                .is_none()
+        );
     }
 }

@@ -87,7 +87,8 @@ impl Obstacles {
     /// Distance (m) from `(x, y)` along heading `angle` to the first
     /// obstacle, if one lies within `max_range`; 0 from inside an obstacle.
     #[must_use]
-    pub fn cast(&self, (x, y): (f64, f64), angle: f64, max_range: f64) -> Option<f64> {
+    pub fn cast(&self, origin: Point, angle: f64, max_range: f64) -> Option<f64> {
+        let (x, y) = (origin.x, origin.y);
         let ray = Ray::new(
             Vector::new(x as f32, y as f32),
             Vector::new(angle.cos() as f32, angle.sin() as f32),
@@ -103,30 +104,30 @@ pub trait RayCaster {
     /// Distance (m) from `origin` along heading `angle` to the first surface
     /// within `max_range`, and which surface it is (0 when the caster does
     /// not tell surfaces apart).
-    fn cast_surface(&self, origin: (f64, f64), angle: f64, max_range: f64) -> Option<(f64, usize)>;
+    fn cast_surface(&self, origin: Point, angle: f64, max_range: f64) -> Option<(f64, usize)>;
 }
 
 impl RayCaster for Obstacles {
-    fn cast_surface(&self, origin: (f64, f64), angle: f64, max_range: f64) -> Option<(f64, usize)> {
+    fn cast_surface(&self, origin: Point, angle: f64, max_range: f64) -> Option<(f64, usize)> {
         self.cast(origin, angle, max_range).map(|d| (d, 0))
     }
 }
 
 /// A polygon edge and its surface.
-type Edge = ((f64, f64), (f64, f64), usize);
+type Edge = (Point, Point, usize);
 
 /// A world's boundary curves for ray casts (parry2d) and exact clearances.
 pub struct WorldGeometry {
     shapes: Vec<CurveShape>,
     /// Every polygon edge with its surface, for exact distances.
     segments: Vec<Edge>,
-    circles: Vec<((f64, f64), f64, usize)>,
+    circles: Vec<(Point, f64, usize)>,
     world: World,
 }
 
 enum CurveShape {
     Polyline(Polyline),
-    Ball((f64, f64), Ball),
+    Ball(Point, Ball),
 }
 
 impl std::fmt::Debug for WorldGeometry {
@@ -154,7 +155,7 @@ impl WorldGeometry {
                     }
                     let vertices = v
                         .iter()
-                        .map(|p| Vector::new(p.0 as f32, p.1 as f32))
+                        .map(|p| Vector::new(p.x as f32, p.y as f32))
                         .collect();
                     let indices = (0..n as u32).map(|i| [i, (i + 1) % n as u32]).collect();
                     shapes.push(CurveShape::Polyline(Polyline::new(vertices, Some(indices))));
@@ -183,20 +184,16 @@ impl WorldGeometry {
     /// curve (0 the outer boundary, `k` obstacle `k − 1`); negative when `p`
     /// is not free.
     #[must_use]
-    pub fn clearance(&self, p: (f64, f64)) -> (f64, usize) {
+    pub fn clearance(&self, p: Point) -> (f64, usize) {
         let mut best = (f64::INFINITY, 0);
         for &(a, b, s) in &self.segments {
-            let d = segment_distance(
-                Point::new(a.0, a.1),
-                Point::new(b.0, b.1),
-                Point::new(p.0, p.1),
-            );
+            let d = segment_distance(Point::new(a.x, a.y), Point::new(b.x, b.y), p);
             if d < best.0 {
                 best = (d, s);
             }
         }
         for &(c, r, s) in &self.circles {
-            let d = ((p.0 - c.0).hypot(p.1 - c.1) - r).abs();
+            let d = ((p.x - c.x).hypot(p.y - c.y) - r).abs();
             if d < best.0 {
                 best = (d, s);
             }
@@ -209,18 +206,18 @@ impl WorldGeometry {
 }
 
 impl RayCaster for WorldGeometry {
-    fn cast_surface(&self, origin: (f64, f64), angle: f64, max_range: f64) -> Option<(f64, usize)> {
+    fn cast_surface(&self, origin: Point, angle: f64, max_range: f64) -> Option<(f64, usize)> {
         let dir = Vector::new(angle.cos() as f32, angle.sin() as f32);
         let mut best: Option<(f64, usize)> = None;
         for (surface, shape) in self.shapes.iter().enumerate() {
             let hit = match shape {
                 CurveShape::Polyline(p) => {
-                    let ray = Ray::new(Vector::new(origin.0 as f32, origin.1 as f32), dir);
+                    let ray = Ray::new(Vector::new(origin.x as f32, origin.y as f32), dir);
                     p.cast_ray(&Pose::IDENTITY, &ray, max_range as f32, false)
                 }
                 CurveShape::Ball(c, b) => {
                     let ray = Ray::new(
-                        Vector::new((origin.0 - c.0) as f32, (origin.1 - c.1) as f32),
+                        Vector::new((origin.x - c.x) as f32, (origin.y - c.y) as f32),
                         dir,
                     );
                     b.cast_ray(&Pose::IDENTITY, &ray, max_range as f32, true)
@@ -258,22 +255,22 @@ mod tests {
         .unwrap();
         let obs = Obstacles::from_map(&map);
         // Row 2 is y ∈ [2, 3] (rows count down from the top; the map is 5 m tall).
-        let d = obs.cast((1.5, 2.5), 0.0, 20.0).unwrap();
+        let d = obs.cast(Point::new(1.5, 2.5), 0.0, 20.0).unwrap();
         assert!((d - 4.5).abs() < 1e-4, "{d}");
         // Backwards to the left map edge.
-        let d = obs.cast((1.5, 2.5), PI, 20.0).unwrap();
+        let d = obs.cast(Point::new(1.5, 2.5), PI, 20.0).unwrap();
         assert!((d - 1.5).abs() < 1e-4, "{d}");
         // Up to the top edge, and nothing within a short range.
-        let d = obs.cast((1.5, 2.5), FRAC_PI_2, 20.0).unwrap();
+        let d = obs.cast(Point::new(1.5, 2.5), FRAC_PI_2, 20.0).unwrap();
         assert!((d - 2.5).abs() < 1e-4, "{d}");
-        assert_eq!(obs.cast((1.5, 2.5), FRAC_PI_2, 1.0), None);
-        // Diagonal: 45° from (4, 0.5) meets the block's left face (x = 6,
+        assert_eq!(obs.cast(Point::new(1.5, 2.5), FRAC_PI_2, 1.0), None);
+        // Diagonal: 45° from Point::new(4.0, 0.5) meets the block's left face (x = 6,
         // y ∈ [1, 4]) at y = 2.5.
         let d = obs
-            .cast((4.0, 0.5), std::f64::consts::FRAC_PI_4, 20.0)
+            .cast(Point::new(4.0, 0.5), std::f64::consts::FRAC_PI_4, 20.0)
             .unwrap();
         assert!((d - 2.0 * 2f64.sqrt()).abs() < 1e-3, "{d}");
         // From inside an obstacle: 0.
-        assert_eq!(obs.cast((6.5, 2.5), 0.0, 5.0), Some(0.0));
+        assert_eq!(obs.cast(Point::new(6.5, 2.5), 0.0, 5.0), Some(0.0));
     }
 }

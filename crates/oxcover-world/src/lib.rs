@@ -33,7 +33,8 @@
 //!     "room",
 //! )
 //! .unwrap();
-//! let run = explore(&WorldGeometry::new(&world), (0.3, 0.3), &Config::default()).unwrap();
+//! let start = oxcover_grid::Point::new(0.3, 0.3);
+//! let run = explore(&WorldGeometry::new(&world), start, &Config::default()).unwrap();
 //! assert!(run.complete);
 //! assert_eq!(run.collisions, 0);
 //! ```

@@ -59,7 +59,7 @@ impl Default for RandomWorldSpec {
 #[must_use]
 pub fn random_world(seed: u64, spec: &RandomWorldSpec) -> World {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut placed: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut placed: Vec<Vec<Point>> = Vec::new();
     for _ in 0..400 {
         if placed.len() >= spec.obstacles {
             break;
@@ -76,14 +76,14 @@ pub fn random_world(seed: u64, spec: &RandomWorldSpec) -> World {
             rng.random_range(0.0..spec.height),
         );
         let (s, c) = angle.sin_cos();
-        let poly: Vec<(f64, f64)> = local
+        let poly: Vec<Point> = local
             .iter()
-            .map(|p| (centre.0 + c * p.0 - s * p.1, centre.1 + s * p.0 + c * p.1))
+            .map(|p| Point::new(centre.0 + c * p.x - s * p.y, centre.1 + s * p.x + c * p.y))
             .collect();
         let g = spec.min_gap;
         let inside = poly
             .iter()
-            .all(|p| p.0 >= g && p.1 >= g && p.0 <= spec.width - g && p.1 <= spec.height - g);
+            .all(|p| p.x >= g && p.y >= g && p.x <= spec.width - g && p.y <= spec.height - g);
         if inside && placed.iter().all(|q| polygon_distance(&poly, q) >= g) {
             placed.push(poly);
         }
@@ -99,7 +99,7 @@ pub fn random_world(seed: u64, spec: &RandomWorldSpec) -> World {
     };
     let geometry = WorldGeometry::new(&world);
     for _ in 0..10_000 {
-        let p = (
+        let p = Point::new(
             rng.random_range(0.0..spec.width),
             rng.random_range(0.0..spec.height),
         );
@@ -111,7 +111,7 @@ pub fn random_world(seed: u64, spec: &RandomWorldSpec) -> World {
     world
 }
 
-fn convex(rng: &mut ChaCha8Rng, radius: f64) -> Vec<(f64, f64)> {
+fn convex(rng: &mut ChaCha8Rng, radius: f64) -> Vec<Point> {
     let n = rng.random_range(3..=7);
     let mut angles: Vec<f64> = (0..n)
         .map(|k| (k as f64 + rng.random_range(0.1..0.9)) * std::f64::consts::TAU / n as f64)
@@ -119,11 +119,11 @@ fn convex(rng: &mut ChaCha8Rng, radius: f64) -> Vec<(f64, f64)> {
     angles.sort_by(f64::total_cmp);
     angles
         .iter()
-        .map(|a| (radius * a.cos(), radius * a.sin()))
+        .map(|a| Point::new(radius * a.cos(), radius * a.sin()))
         .collect()
 }
 
-fn concave(rng: &mut ChaCha8Rng, radius: f64) -> Vec<(f64, f64)> {
+fn concave(rng: &mut ChaCha8Rng, radius: f64) -> Vec<Point> {
     match rng.random_range(0..3) {
         // A star: spikes at `radius`, notches at about half of it.
         0 => {
@@ -133,7 +133,7 @@ fn concave(rng: &mut ChaCha8Rng, radius: f64) -> Vec<(f64, f64)> {
                 .map(|i| {
                     let a = i as f64 * std::f64::consts::PI / k as f64;
                     let r = if i % 2 == 0 { radius } else { inner };
-                    (r * a.cos(), r * a.sin())
+                    Point::new(r * a.cos(), r * a.sin())
                 })
                 .collect()
         }
@@ -142,12 +142,12 @@ fn concave(rng: &mut ChaCha8Rng, radius: f64) -> Vec<(f64, f64)> {
             let t = rng.random_range(0.25..0.45) * radius;
             let (a, b) = (radius * 0.7, radius * 0.7);
             vec![
-                (-a, -b),
-                (a, -b),
-                (a, -b + t),
-                (-a + t, -b + t),
-                (-a + t, b),
-                (-a, b),
+                Point::new(-a, -b),
+                Point::new(a, -b),
+                Point::new(a, -b + t),
+                Point::new(-a + t, -b + t),
+                Point::new(-a + t, b),
+                Point::new(-a, b),
             ]
         }
         // A U.
@@ -155,26 +155,26 @@ fn concave(rng: &mut ChaCha8Rng, radius: f64) -> Vec<(f64, f64)> {
             let t = rng.random_range(0.2..0.3) * radius;
             let (a, b) = (radius * 0.75, radius * 0.65);
             vec![
-                (-a, -b),
-                (a, -b),
-                (a, b),
-                (a - t, b),
-                (a - t, -b + t),
-                (-a + t, -b + t),
-                (-a + t, b),
-                (-a, b),
+                Point::new(-a, -b),
+                Point::new(a, -b),
+                Point::new(a, b),
+                Point::new(a - t, b),
+                Point::new(a - t, -b + t),
+                Point::new(-a + t, -b + t),
+                Point::new(-a + t, b),
+                Point::new(-a, b),
             ]
         }
     }
 }
 
 /// Smallest distance between two polygons (0 when they overlap).
-fn polygon_distance(p: &[(f64, f64)], q: &[(f64, f64)]) -> f64 {
-    let inside = |v: &[(f64, f64)], pt: (f64, f64)| Shape::Polygon(v.to_vec()).contains(pt);
+fn polygon_distance(p: &[Point], q: &[Point]) -> f64 {
+    let inside = |v: &[Point], pt: Point| Shape::Polygon(v.to_vec()).contains(pt);
     if inside(p, q[0]) || inside(q, p[0]) {
         return 0.0;
     }
-    let edges = |v: &[(f64, f64)]| -> Vec<((f64, f64), (f64, f64))> {
+    let edges = |v: &[Point]| -> Vec<(Point, Point)> {
         (0..v.len()).map(|i| (v[i], v[(i + 1) % v.len()])).collect()
     };
     let mut best = f64::INFINITY;
@@ -183,7 +183,7 @@ fn polygon_distance(p: &[(f64, f64)], q: &[(f64, f64)]) -> f64 {
             if segments_cross(a, b, c, d) {
                 return 0.0;
             }
-            let p = |v: (f64, f64)| Point::new(v.0, v.1);
+            let p = |v: Point| v;
             let (a, b, c, d) = (p(a), p(b), p(c), p(d));
             best = best
                 .min(segment_distance(c, d, a))

@@ -7,7 +7,7 @@ use rand_chacha::ChaCha8Rng;
 
 use crate::error::{Error, Result, positive};
 use crate::geometry::RayCaster;
-use oxcover_grid::Pose;
+use oxcover_grid::{Point, Pose};
 
 /// One range reading.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -74,14 +74,17 @@ impl RangeSensor {
         let angles = self.angles.clone();
         angles
             .iter()
-            .map(|&a| self.read(obstacles, (pose.x, pose.y), pose.theta + a).range)
+            .map(|&a| {
+                self.read(obstacles, Point::new(pose.x, pose.y), pose.theta + a)
+                    .range
+            })
             .collect()
     }
 
     /// One ray from `origin` along the absolute heading `angle`: its noisy
     /// range, clamped to `[0, max_range]`, and the surface it hit (`None`
     /// when nothing lies within `max_range`).
-    pub fn read(&mut self, caster: &impl RayCaster, origin: (f64, f64), angle: f64) -> Reading {
+    pub fn read(&mut self, caster: &impl RayCaster, origin: Point, angle: f64) -> Reading {
         let hit = caster.cast_surface(origin, angle, self.max_range);
         let range = hit.map_or(self.max_range, |h| h.0);
         Reading {

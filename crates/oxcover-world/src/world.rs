@@ -35,7 +35,7 @@
 
 use std::path::Path;
 
-use oxcover_grid::{Grid, Occupancy, OccupancyGrid, Point};
+use oxcover_grid::{Grid, Occupancy, OccupancyGrid, Point, Vector};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
@@ -49,20 +49,20 @@ pub const MAX_CELLS: usize = 50_000_000;
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum Shape {
     /// A simple polygon: vertices in order (either orientation), convex or not.
-    Polygon(Vec<(f64, f64)>),
+    Polygon(Vec<Point>),
     /// A disc.
     Circle {
         /// Centre (m).
-        centre: (f64, f64),
+        centre: Point,
         /// Radius (m).
         radius: f64,
     },
     /// A rotated rectangle.
     Rect {
         /// Centre (m).
-        centre: (f64, f64),
+        centre: Point,
         /// Side lengths (m).
-        size: (f64, f64),
+        size: Vector,
         /// Rotation, counter-clockwise (degrees).
         angle_deg: f64,
     },
@@ -71,19 +71,19 @@ pub enum Shape {
 impl Shape {
     /// Whether `p` lies inside (boundary included).
     #[must_use]
-    pub fn contains(&self, p: (f64, f64)) -> bool {
+    pub fn contains(&self, p: Point) -> bool {
         match self {
             Self::Polygon(v) => inside_polygon(v, p),
-            Self::Circle { centre, radius } => (p.0 - centre.0).hypot(p.1 - centre.1) <= *radius,
+            Self::Circle { centre, radius } => (p.x - centre.x).hypot(p.y - centre.y) <= *radius,
             Self::Rect {
                 centre,
                 size,
                 angle_deg,
             } => {
                 let (s, c) = angle_deg.to_radians().sin_cos();
-                let (dx, dy) = (p.0 - centre.0, p.1 - centre.1);
+                let (dx, dy) = (p.x - centre.x, p.y - centre.y);
                 let (u, v) = (c * dx + s * dy, -s * dx + c * dy);
-                u.abs() <= size.0 / 2.0 && v.abs() <= size.1 / 2.0
+                u.abs() <= size.x / 2.0 && v.abs() <= size.y / 2.0
             }
         }
     }
@@ -103,8 +103,9 @@ impl Shape {
                 angle_deg,
             } => {
                 let (s, c) = angle_deg.to_radians().sin_cos();
-                let (hx, hy) = (size.0 / 2.0, size.1 / 2.0);
-                let corner = |u: f64, v: f64| (centre.0 + c * u - s * v, centre.1 + s * u + c * v);
+                let (hx, hy) = (size.x / 2.0, size.y / 2.0);
+                let corner =
+                    |u: f64, v: f64| Point::new(centre.x + c * u - s * v, centre.y + s * u + c * v);
                 Outline::Polygon(vec![
                     corner(-hx, -hy),
                     corner(hx, -hy),
@@ -120,23 +121,23 @@ impl Shape {
 #[derive(Clone, Debug, PartialEq)]
 pub enum Outline {
     /// A closed polygon (the last vertex joins the first).
-    Polygon(Vec<(f64, f64)>),
+    Polygon(Vec<Point>),
     /// A circle.
     Circle {
         /// Centre (m).
-        centre: (f64, f64),
+        centre: Point,
         /// Radius (m).
         radius: f64,
     },
 }
 
 /// Even-odd rule.
-fn inside_polygon(v: &[(f64, f64)], p: (f64, f64)) -> bool {
+fn inside_polygon(v: &[Point], p: Point) -> bool {
     let mut inside = false;
     let n = v.len();
     for i in 0..n {
         let (a, b) = (v[i], v[(i + n - 1) % n]);
-        if (a.1 > p.1) != (b.1 > p.1) && p.0 < (b.0 - a.0) * (p.1 - a.1) / (b.1 - a.1) + a.0 {
+        if (a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x {
             inside = !inside;
         }
     }
@@ -156,12 +157,12 @@ pub struct World {
     pub resolution: f64,
     /// Outer boundary, inside the extent; the extent itself when absent.
     #[serde(default)]
-    pub boundary: Option<Vec<(f64, f64)>>,
+    pub boundary: Option<Vec<Point>>,
     /// Obstacles.
     pub obstacles: Vec<Shape>,
     /// A start position for experiments (m), if the file names one.
     #[serde(default)]
-    pub start: Option<(f64, f64)>,
+    pub start: Option<Point>,
 }
 
 /// Which way the free intervals of a slice change at a critical point, for a
@@ -224,9 +225,9 @@ impl CriticalKind {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TrueCriticalPoint {
     /// The boundary point (m); for a vertical edge, its lower end.
-    pub at: (f64, f64),
+    pub at: Point,
     /// For a vertical edge, its upper end; else the same as `at`.
-    pub to: (f64, f64),
+    pub to: Point,
     /// Class.
     pub kind: CriticalKind,
     /// Which curve: 0 the outer boundary, `k` obstacle `k − 1`.
@@ -236,10 +237,10 @@ pub struct TrueCriticalPoint {
 impl TrueCriticalPoint {
     /// Distance from `p` to the point (or to the vertical edge).
     #[must_use]
-    pub fn distance(&self, p: (f64, f64)) -> f64 {
-        let (lo, hi) = (self.at.1.min(self.to.1), self.at.1.max(self.to.1));
-        let y = p.1.clamp(lo, hi);
-        (p.0 - self.at.0).hypot(p.1 - y)
+    pub fn distance(&self, p: Point) -> f64 {
+        let (lo, hi) = (self.at.y.min(self.to.y), self.at.y.max(self.to.y));
+        let y = p.y.clamp(lo, hi);
+        (p.x - self.at.x).hypot(p.y - y)
     }
 }
 
@@ -300,11 +301,11 @@ impl World {
             check_polygon(b).map_err(|m| format!("boundary: {m}"))?;
             let eps = 1e-9 * (self.width + self.height);
             if let Some(p) = b.iter().find(|p| {
-                p.0 < -eps || p.1 < -eps || p.0 > self.width + eps || p.1 > self.height + eps
+                p.x < -eps || p.y < -eps || p.x > self.width + eps || p.y > self.height + eps
             }) {
                 return Err(format!(
                     "boundary vertex ({}, {}) lies outside the extent [0, {}] x [0, {}]",
-                    p.0, p.1, self.width, self.height
+                    p.x, p.y, self.width, self.height
                 ));
             }
         }
@@ -322,8 +323,8 @@ impl World {
                     angle_deg,
                 } => {
                     finite_point(*centre).map_err(|m| format!("{name}: {m}"))?;
-                    positive(&format!("{name} width"), size.0)?;
-                    positive(&format!("{name} height"), size.1)?;
+                    positive(&format!("{name} width"), size.x)?;
+                    positive(&format!("{name} height"), size.y)?;
                     if !angle_deg.is_finite() {
                         return Err(format!("{name}: angle_deg is {angle_deg}"));
                     }
@@ -335,23 +336,23 @@ impl World {
 
     /// The outer boundary polygon (the extent's rectangle when none is given).
     #[must_use]
-    pub fn boundary_polygon(&self) -> Vec<(f64, f64)> {
+    pub fn boundary_polygon(&self) -> Vec<Point> {
         self.boundary.clone().unwrap_or_else(|| {
             vec![
-                (0.0, 0.0),
-                (self.width, 0.0),
-                (self.width, self.height),
-                (0.0, self.height),
+                Point::new(0.0, 0.0),
+                Point::new(self.width, 0.0),
+                Point::new(self.width, self.height),
+                Point::new(0.0, self.height),
             ]
         })
     }
 
     /// Whether `p` is free: inside the boundary and in no obstacle.
     #[must_use]
-    pub fn is_free(&self, p: (f64, f64)) -> bool {
+    pub fn is_free(&self, p: Point) -> bool {
         let inside = match &self.boundary {
             Some(b) => inside_polygon(b, p),
-            None => p.0 >= 0.0 && p.1 >= 0.0 && p.0 <= self.width && p.1 <= self.height,
+            None => p.x >= 0.0 && p.y >= 0.0 && p.x <= self.width && p.y <= self.height,
         };
         inside && !self.obstacles.iter().any(|s| s.contains(p))
     }
@@ -367,8 +368,8 @@ impl World {
         let frame = *map.frame();
         for cell in Grid::<()>::new(w, h, ()).cells() {
             let c = frame.cell_center(cell);
-            let p = (c.x, c.y);
-            let outside = p.0 < 0.0 || p.1 < 0.0 || p.0 > self.width || p.1 > self.height;
+            let p = c;
+            let outside = p.x < 0.0 || p.y < 0.0 || p.x > self.width || p.y > self.height;
             if outside || !self.is_free(p) {
                 map.cells_mut()[cell] = Occupancy::Occupied;
             }
@@ -403,13 +404,13 @@ impl World {
                 Outline::Circle { centre, radius } => [1.0, -1.0]
                     .iter()
                     .map(|&open| {
-                        let p = (centre.0 - open * radius, centre.1);
+                        let p = Point::new(centre.x - open * radius, centre.y);
                         Extremum {
                             lo: p,
                             hi: p,
                             open,
                             convex: true,
-                            free_probe: (p.0 - open * nudge, p.1),
+                            free_probe: Point::new(p.x - open * nudge, p.y),
                         }
                     })
                     .collect(),
@@ -434,35 +435,35 @@ impl World {
 /// An x-extremal stretch of a boundary curve.
 struct Extremum {
     /// Lower end.
-    lo: (f64, f64),
+    lo: Point,
     /// Upper end.
-    hi: (f64, f64),
+    hi: Point,
     /// The side (±1 in x) the curve extends to.
     open: f64,
     /// Whether the obstacle bulges there.
     convex: bool,
     /// A point just off the extreme vertex on the free side.
-    free_probe: (f64, f64),
+    free_probe: Point,
 }
 
 /// The x-extremal stretches of a closed polygon: runs of consecutive
 /// vertices within `eps` in x whose neighbours both lie on one side.
 /// `obstacle` says whether the polygon's interior is an obstacle (else it is
 /// the outer boundary, its interior free).
-fn polygon_extrema(v: &[(f64, f64)], eps: f64, obstacle: bool, nudge: f64) -> Vec<Extremum> {
+fn polygon_extrema(v: &[Point], eps: f64, obstacle: bool, nudge: f64) -> Vec<Extremum> {
     let n = v.len();
-    let same = |a: (f64, f64), b: (f64, f64)| (a.0 - b.0).abs() <= eps;
+    let same = |a: Point, b: Point| (a.x - b.x).abs() <= eps;
     let orientation = (0..n)
         .map(|i| {
             let (a, b) = (v[i], v[(i + 1) % n]);
-            a.0 * b.1 - b.0 * a.1
+            a.x * b.y - b.x * a.y
         })
         .sum::<f64>()
         .signum();
     let at = |k: usize| v[k % n];
     // Normal of the edge `a → b` pointing into free space.
-    let free_normal = |a: (f64, f64), b: (f64, f64)| {
-        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let free_normal = |a: Point, b: Point| {
+        let (dx, dy) = (b.x - a.x, b.y - a.y);
         let l = dx.hypot(dy);
         // Right of the edge is outside a counter-clockwise polygon.
         let out = if orientation > 0.0 {
@@ -487,10 +488,10 @@ fn polygon_extrema(v: &[(f64, f64)], eps: f64, obstacle: bool, nudge: f64) -> Ve
         }
         let last = start + j;
         let (prev, next) = (at(i + n - 1), at(last + 1));
-        let x = at(i).0;
-        let open = if prev.0 > x && next.0 > x {
+        let x = at(i).x;
+        let open = if prev.x > x && next.x > x {
             1.0
-        } else if prev.0 < x && next.0 < x {
+        } else if prev.x < x && next.x < x {
             -1.0
         } else {
             k = j + 1;
@@ -501,14 +502,14 @@ fn polygon_extrema(v: &[(f64, f64)], eps: f64, obstacle: bool, nudge: f64) -> Ve
         let turn: f64 = (i..=last)
             .map(|m| {
                 let (p, c, q) = (at(m + n - 1), at(m), at(m + 1));
-                let (d1, d2) = ((c.0 - p.0, c.1 - p.1), (q.0 - c.0, q.1 - c.1));
+                let (d1, d2) = ((c.x - p.x, c.y - p.y), (q.x - c.x, q.y - c.y));
                 (d1.0 * d2.1 - d1.1 * d2.0).atan2(d1.0 * d2.0 + d1.1 * d2.1)
             })
             .sum();
         let polygon_convex = turn * orientation > 0.0;
         // The stretch's extreme vertex, and a probe off it into free space.
         let e = (i..=last)
-            .min_by(|&a, &b| (open * at(a).0).total_cmp(&(open * at(b).0)))
+            .min_by(|&a, &b| (open * at(a).x).total_cmp(&(open * at(b).x)))
             .unwrap_or(i);
         let (n1, n2) = (
             free_normal(at(e + n - 1), at(e)),
@@ -518,29 +519,29 @@ fn polygon_extrema(v: &[(f64, f64)], eps: f64, obstacle: bool, nudge: f64) -> Ve
         let l = sx.hypot(sy);
         let dir = if l > 1e-9 { (sx / l, sy / l) } else { n1 };
         let (a, b) = (at(i), at(last));
-        let (lo, hi) = if a.1 <= b.1 { (a, b) } else { (b, a) };
+        let (lo, hi) = if a.y <= b.y { (a, b) } else { (b, a) };
         out.push(Extremum {
             lo,
             hi,
             open,
             convex: polygon_convex == obstacle,
-            free_probe: (at(e).0 + nudge * dir.0, at(e).1 + nudge * dir.1),
+            free_probe: Point::new(at(e).x + nudge * dir.0, at(e).y + nudge * dir.1),
         });
         k = j + 1;
     }
     out
 }
 
-fn finite_point(p: (f64, f64)) -> std::result::Result<(), String> {
-    if p.0.is_finite() && p.1.is_finite() {
+fn finite_point(p: Point) -> std::result::Result<(), String> {
+    if p.x.is_finite() && p.y.is_finite() {
         Ok(())
     } else {
-        Err(format!("point ({}, {}) is not finite", p.0, p.1))
+        Err(format!("point ({}, {}) is not finite", p.x, p.y))
     }
 }
 
 /// At least three finite vertices, a non-zero area, no edge crossing another.
-fn check_polygon(v: &[(f64, f64)]) -> std::result::Result<(), String> {
+fn check_polygon(v: &[Point]) -> std::result::Result<(), String> {
     if v.len() < 3 {
         return Err(format!(
             "a polygon needs 3 vertices or more, got {}",
@@ -554,7 +555,7 @@ fn check_polygon(v: &[(f64, f64)]) -> std::result::Result<(), String> {
     let area: f64 = (0..n)
         .map(|i| {
             let (a, b) = (v[i], v[(i + 1) % n]);
-            a.0 * b.1 - b.0 * a.1
+            a.x * b.y - b.x * a.y
         })
         .sum::<f64>()
         / 2.0;
@@ -581,11 +582,11 @@ fn check_polygon(v: &[(f64, f64)]) -> std::result::Result<(), String> {
     Ok(())
 }
 
-fn orient(a: (f64, f64), b: (f64, f64), c: (f64, f64)) -> f64 {
-    (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0)
+fn orient(a: Point, b: Point, c: Point) -> f64 {
+    (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x)
 }
 
-pub(crate) fn segments_cross(a: (f64, f64), b: (f64, f64), c: (f64, f64), d: (f64, f64)) -> bool {
+pub(crate) fn segments_cross(a: Point, b: Point, c: Point, d: Point) -> bool {
     let (d1, d2) = (orient(c, d, a), orient(c, d, b));
     let (d3, d4) = (orient(a, b, c), orient(a, b, d));
     (d1 * d2 < 0.0) && (d3 * d4 < 0.0)
@@ -659,7 +660,7 @@ mod tests {
         let cps = w.critical_points(0.0);
         let find = |x: f64, y: f64| {
             cps.iter()
-                .find(|c| c.distance((x, y)) < 1e-9)
+                .find(|c| c.distance(Point::new(x, y)) < 1e-9)
                 .unwrap_or_else(|| panic!("no critical point at ({x}, {y}): {cps:?}"))
                 .kind
                 .label()
@@ -677,7 +678,7 @@ mod tests {
         let tip = spike.critical_points(0.0);
         let tip = tip
             .iter()
-            .find(|c| c.surface == 1 && c.at == (1.0, 2.0))
+            .find(|c| c.surface == 1 && c.at == Point::new(1.0, 2.0))
             .unwrap();
         assert_eq!(tip.kind.label(), "IN convex");
         // A nearly vertical edge is one stretch within a tolerance.
@@ -718,9 +719,18 @@ mod tests {
             .collect();
         let labels: Vec<_> = cps.iter().map(|c| (c.at, c.kind.label())).collect();
         assert_eq!(cps.len(), 4, "{labels:?}");
-        assert!(labels.contains(&((4.0, 4.0), "IN concave")), "{labels:?}");
-        assert!(labels.contains(&((6.0, 2.5), "OUT convex")), "{labels:?}");
-        assert!(labels.contains(&((6.0, 6.0), "OUT convex")), "{labels:?}");
+        assert!(
+            labels.contains(&(Point::new(4.0, 4.0), "IN concave")),
+            "{labels:?}"
+        );
+        assert!(
+            labels.contains(&(Point::new(6.0, 2.5), "OUT convex")),
+            "{labels:?}"
+        );
+        assert!(
+            labels.contains(&(Point::new(6.0, 6.0), "OUT convex")),
+            "{labels:?}"
+        );
     }
 
     #[test]
@@ -732,21 +742,21 @@ mod tests {
             ])",
         );
         let g = WorldGeometry::new(&w);
-        let (d, s) = g.cast_surface((0.5, 3.0), 0.0, 20.0).unwrap();
+        let (d, s) = g.cast_surface(Point::new(0.5, 3.0), 0.0, 20.0).unwrap();
         assert!((d - 1.5).abs() < 1e-5 && s == 1, "{d} {s}");
-        let (d, s) = g.cast_surface((5.0, 3.0), 0.0, 20.0).unwrap();
+        let (d, s) = g.cast_surface(Point::new(5.0, 3.0), 0.0, 20.0).unwrap();
         assert!((d - 1.0).abs() < 1e-5 && s == 2, "{d} {s}");
         let (d, s) = g
-            .cast_surface((5.0, 3.0), std::f64::consts::FRAC_PI_2, 20.0)
+            .cast_surface(Point::new(5.0, 3.0), std::f64::consts::FRAC_PI_2, 20.0)
             .unwrap();
         assert!((d - 3.0).abs() < 1e-5 && s == 0, "{d} {s}");
         assert!(
-            g.cast_surface((5.0, 3.0), std::f64::consts::FRAC_PI_2, 2.0)
+            g.cast_surface(Point::new(5.0, 3.0), std::f64::consts::FRAC_PI_2, 2.0)
                 .is_none()
         );
-        let (c, s) = g.clearance((5.2, 3.0));
+        let (c, s) = g.clearance(Point::new(5.2, 3.0));
         assert!((c - 0.8).abs() < 1e-12 && s == 2);
-        assert!(g.clearance((3.0, 3.0)).0 < 0.0);
-        assert!(g.clearance((-1.0, 3.0)).0 < 0.0);
+        assert!(g.clearance(Point::new(3.0, 3.0)).0 < 0.0);
+        assert!(g.clearance(Point::new(-1.0, 3.0)).0 < 0.0);
     }
 }

@@ -44,7 +44,7 @@ fn sensor_bcd(c: &mut Criterion) {
             b.iter(|| black_box(explore(&geometry, start, &cfg).expect("explored")));
         });
         let map = world.rasterise();
-        let problem = CoverageProblem::new(&map, robot, Start::At(Point::new(start.0, start.1)))
+        let problem = CoverageProblem::new(&map, robot, Start::At(Point::new(start.x, start.y)))
             .expect("problem");
         let input = problem.input(0);
         let planner = find("boustrophedon").expect("registered");

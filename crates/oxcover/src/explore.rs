@@ -104,7 +104,7 @@ pub struct ExploreReport<'a> {
 /// start in a wall), and map errors from scoring.
 pub fn explore_world(world: &World, cfg: &Config, start: Option<Point>) -> Result<ExploreOutcome> {
     let start = match (start, world.start) {
-        (Some(p), _) => (p.x, p.y),
+        (Some(p), _) => p,
         (None, Some(p)) => p,
         (None, None) => {
             return Err(Error::BadParameter {
@@ -240,22 +240,22 @@ pub fn overlay(e: &Exploration, truth: &[TrueCriticalPoint]) -> Overlay {
     for edge in &g.edges {
         let mut pts: Vec<Point> = Vec::new();
         if let Some(f) = edge.from {
-            pts.push(Point::new(g.nodes[f].at.0, g.nodes[f].at.1));
+            pts.push(Point::new(g.nodes[f].at.x, g.nodes[f].at.y));
         }
         pts.extend(
             edge.laps
                 .iter()
-                .map(|(lo, hi)| Point::new((lo.0 + hi.0) / 2.0, (lo.1 + hi.1) / 2.0)),
+                .map(|(lo, hi)| Point::new((lo.x + hi.x) / 2.0, (lo.y + hi.y) / 2.0)),
         );
         if let Some(t) = edge.to {
-            pts.push(Point::new(g.nodes[t].at.0, g.nodes[t].at.1));
+            pts.push(Point::new(g.nodes[t].at.x, g.nodes[t].at.y));
         }
         for w in pts.windows(2) {
             o.lines.push((w[0], w[1], GRAPH_RGB));
         }
     }
     for t in truth {
-        let p = Point::new((t.at.0 + t.to.0) / 2.0, (t.at.1 + t.to.1) / 2.0);
+        let p = Point::new((t.at.x + t.to.x) / 2.0, (t.at.y + t.to.y) / 2.0);
         o.markers.push((p, TRUE_RGB, MarkerShape::Ring, 9.0));
     }
     for n in &g.nodes {
@@ -270,7 +270,7 @@ pub fn overlay(e: &Exploration, truth: &[TrueCriticalPoint]) -> Overlay {
             MarkerShape::Square
         };
         o.markers
-            .push((Point::new(n.at.0, n.at.1), rgb, shape, 5.0));
+            .push((Point::new(n.at.x, n.at.y), rgb, shape, 5.0));
     }
     if let (Some(a), Some(b)) = (e.trace.first(), e.trace.last()) {
         o.markers

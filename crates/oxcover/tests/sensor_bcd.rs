@@ -40,7 +40,7 @@ fn length_bound(world: &World, cfg: &Config) -> f64 {
             Outline::Polygon(v) => (0..v.len())
                 .map(|i| {
                     let (a, b) = (v[i], v[(i + 1) % v.len()]);
-                    (b.0 - a.0).hypot(b.1 - a.1)
+                    (b.x - a.x).hypot(b.y - a.y)
                 })
                 .sum(),
             Outline::Circle { radius, .. } => std::f64::consts::TAU * radius,
@@ -73,7 +73,7 @@ fn check_random(spec: &RandomWorldSpec, seeds: std::ops::Range<u64>, noise_sd: f
         );
         // Every lap and follow step stays inside the world's free space.
         for t in &ex.trace {
-            assert!(world.is_free((t.x, t.y)), "seed {seed}: {t:?}");
+            assert!(world.is_free(Point::new(t.x, t.y)), "seed {seed}: {t:?}");
         }
     }
 }
@@ -111,7 +111,7 @@ fn an_empty_room_is_three_laps_and_one_cell() {
     // start; x = 0 and 2 lie outside the free space.
     let world = room("(name: \"box\", width: 2.0, height: 1.5, resolution: 0.025, obstacles: [])");
     let cfg = Config::default();
-    let ex = explore(&WorldGeometry::new(&world), (0.5, 0.5), &cfg).expect("explored");
+    let ex = explore(&WorldGeometry::new(&world), Point::new(0.5, 0.5), &cfg).expect("explored");
     let mut laps: Vec<(f64, f64, f64)> = Vec::new();
     for w in ex.trace.windows(2) {
         if w[1].state == State::MotionToBoundary {
@@ -147,8 +147,8 @@ fn an_empty_room_is_three_laps_and_one_cell() {
         g.edges[0].from.expect("left end"),
         g.edges[0].to.expect("right end"),
     );
-    assert!(g.nodes[from].at.0.abs() < 1e-3 && g.nodes[from].kind.event == Event::In);
-    assert!((g.nodes[to].at.0 - 2.0).abs() < 1e-3 && g.nodes[to].kind.event == Event::Out);
+    assert!(g.nodes[from].at.x.abs() < 1e-3 && g.nodes[from].kind.event == Event::In);
+    assert!((g.nodes[to].at.x - 2.0).abs() < 1e-3 && g.nodes[to].kind.event == Event::Out);
     assert_eq!(g.edges[0].laps.len(), 3);
     // What is missed is the four corners: the contract's robot may stand
     // 0.2 m from the walls, ours keeps its 4 cm margin (about 1 % of so
@@ -164,13 +164,13 @@ fn one_obstacle_splits_the_room_into_four_cells() {
             Polygon([(1.5, 1.5), (2.0, 0.9), (2.5, 1.5), (2.0, 2.1)])])",
     );
     let cfg = Config::default();
-    let ex = explore(&WorldGeometry::new(&world), (0.5, 0.5), &cfg).expect("explored");
+    let ex = explore(&WorldGeometry::new(&world), Point::new(0.5, 0.5), &cfg).expect("explored");
     let g = &ex.graph;
     assert_eq!((g.nodes.len(), g.edges.len()), (4, 4), "{g:?}");
     let node = |x: f64| {
         g.nodes
             .iter()
-            .position(|n| (n.at.0 - x).abs() < 0.02)
+            .position(|n| (n.at.x - x).abs() < 0.02)
             .unwrap_or_else(|| panic!("no node at x = {x}: {:?}", g.nodes))
     };
     let (wall_in, split, merge, wall_out) = (node(0.0), node(1.5), node(2.5), node(4.0));
@@ -206,10 +206,10 @@ fn bad_settings_and_starts_are_errors_not_panics() {
     let g = WorldGeometry::new(&world);
     let ok = Config::default();
     for (start, needle) in [
-        ((1.5, 1.5), "obstacle"),
-        ((0.1, 0.1), "radius"),
-        ((-1.0, 0.5), "obstacle"),
-        ((f64::NAN, 0.5), "finite"),
+        (Point::new(1.5, 1.5), "obstacle"),
+        (Point::new(0.1, 0.1), "radius"),
+        (Point::new(-1.0, 0.5), "obstacle"),
+        (Point::new(f64::NAN, 0.5), "finite"),
     ] {
         let e = explore(&g, start, &ok)
             .expect_err("a bad start")
@@ -281,7 +281,7 @@ fn bad_settings_and_starts_are_errors_not_panics() {
             "max length",
         ),
     ] {
-        let e = explore(&g, (0.5, 0.5), &cfg)
+        let e = explore(&g, Point::new(0.5, 0.5), &cfg)
             .expect_err("bad settings")
             .to_string();
         assert!(e.contains(needle), "{e}");
@@ -291,7 +291,7 @@ fn bad_settings_and_starts_are_errors_not_panics() {
         max_length: 5.0,
         ..ok
     };
-    let e = explore(&g, (0.5, 0.5), &short)
+    let e = explore(&g, Point::new(0.5, 0.5), &short)
         .expect_err("too long")
         .to_string();
     assert!(e.contains("longer than"), "{e}");

@@ -86,7 +86,7 @@ pub fn measure() -> anyhow::Result<Vec<Measured>> {
             let sweep = planner("boustrophedon", &PlannerOptions::new().sweep_angle(90.0))?;
             let req = PlanRequest::with_planner(sweep, world.resolution)
                 .robot(DiscRobot::new(cfg.robot_radius, cfg.tool_radius)?)
-                .start(Start::from(world.start.map(|s| Point::new(s.0, s.1))));
+                .start(Start::from(world.start.map(|s| Point::new(s.x, s.y))));
             let off = plan(&clean.map, &req)?;
             let offline = (
                 off.evaluation.metrics.coverage,
@@ -272,12 +272,12 @@ fn page(results: &[Measured]) -> String {
                     format!(
                         "{} ({:.2}, {:.2}){} {} (nearest detection {:.2} m away)",
                         m.world.name,
-                        t.at.0,
-                        t.at.1,
+                        t.at.x,
+                        t.at.y,
                         if t.at == t.to {
                             String::new()
                         } else {
-                            format!("–({:.2}, {:.2})", t.to.0, t.to.1)
+                            format!("–({:.2}, {:.2})", t.to.x, t.to.y)
                         },
                         t.kind.label(),
                         d

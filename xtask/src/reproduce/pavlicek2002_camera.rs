@@ -21,7 +21,7 @@ use std::path::Path;
 use oxcover::pipeline::{PlanRequest, plan, planner};
 use oxcover::planners::PlannerOptions;
 use oxcover::render::{Scene, render_to_file};
-use oxcover_grid::{Cell, DiscRobot, Grid, OccupancyGrid, Pose};
+use oxcover_grid::{Cell, DiscRobot, Grid, OccupancyGrid, Point, Pose};
 use oxcover_vision::calibration::{FloorPair, calibrate_distortion, calibrate_projection};
 use oxcover_vision::occupancy::Visibility;
 use oxcover_vision::synthetic::{Lighting, Rendered, SplitMix, SyntheticScene};
@@ -166,7 +166,7 @@ fn scene_of(world: &World) -> (OccupancyGrid, Grid<[u8; 3]>) {
         world
             .obstacles
             .iter()
-            .position(|s| s.contains((p.x, p.y)))
+            .position(|s| s.contains(Point::new(p.x, p.y)))
             .map_or([95, 100, 125], |k| WALL_COLOURS[k % WALL_COLOURS.len()])
     });
     (map, walls)

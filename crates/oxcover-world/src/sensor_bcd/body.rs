@@ -17,6 +17,7 @@
 //! every move, that the disc did not touch it (collisions are counted, not
 //! prevented, so a test can demand zero).
 
+use oxcover_grid::Point;
 use std::collections::VecDeque;
 use std::f64::consts::TAU;
 
@@ -51,7 +52,7 @@ pub(crate) struct Body<'w> {
     beside: f64,
     noise_sd: f64,
     /// Position (m).
-    pub p: (f64, f64),
+    pub p: Point,
     heading: f64,
     ring: RangeSensor,
     ring_angles: Vec<f64>,
@@ -59,9 +60,9 @@ pub(crate) struct Body<'w> {
     pub probe: RangeSensor,
     /// The detector.
     pub detector: ThreeRayDetector,
-    recent: VecDeque<Vec<(f64, f64)>>,
+    recent: VecDeque<Vec<Point>>,
     /// Nearest sensed point of the last scan and its surface.
-    pub nearest: Option<((f64, f64), usize)>,
+    pub nearest: Option<(Point, usize)>,
     /// Every position, with the state that led to it.
     pub trace: Vec<TracePoint>,
     /// Path length so far (m).
@@ -78,7 +79,7 @@ pub(crate) struct Body<'w> {
 
 impl<'w> Body<'w> {
     /// A robot at `start`, after its first scan.
-    pub(crate) fn new(world: &'w WorldGeometry, cfg: &Config, start: (f64, f64)) -> Result<Self> {
+    pub(crate) fn new(world: &'w WorldGeometry, cfg: &Config, start: Point) -> Result<Self> {
         let bad = |e: Error| Error::BadParameter {
             name: "range sensor",
             value: e.to_string(),
@@ -111,8 +112,8 @@ impl<'w> Body<'w> {
             recent: VecDeque::new(),
             nearest: None,
             trace: vec![TracePoint {
-                x: start.0,
-                y: start.1,
+                x: start.x,
+                y: start.y,
                 state: State::Start,
             }],
             length: 0.0,
@@ -130,14 +131,14 @@ impl<'w> Body<'w> {
     /// Reads the ring and updates the memory and the map.
     fn scan(&mut self) {
         let mut hits = Vec::with_capacity(self.ring_angles.len());
-        let mut nearest: Option<((f64, f64), usize, f64)> = None;
+        let mut nearest: Option<(Point, usize, f64)> = None;
         let mark_free = self.scans % MAP_SCAN_STRIDE == 0;
         for (k, &a) in self.ring_angles.iter().enumerate() {
             let angle = self.heading + a;
             let reading = self.ring.read(self.world, self.p, angle);
-            let end = (
-                self.p.0 + reading.range * angle.cos(),
-                self.p.1 + reading.range * angle.sin(),
+            let end = Point::new(
+                self.p.x + reading.range * angle.cos(),
+                self.p.y + reading.range * angle.sin(),
             );
             if let Some(s) = reading.surface {
                 hits.push(end);
@@ -148,7 +149,7 @@ impl<'w> Body<'w> {
             }
             if mark_free && k % MAP_RAY_STRIDE == 0 {
                 let t = reading.range.min(MAP_RANGE);
-                let to = (self.p.0 + t * angle.cos(), self.p.1 + t * angle.sin());
+                let to = Point::new(self.p.x + t * angle.cos(), self.p.y + t * angle.sin());
                 self.map
                     .ray(self.p, to, reading.surface.is_some() && t >= reading.range);
             }
@@ -160,35 +161,35 @@ impl<'w> Body<'w> {
     }
 
     /// Sensed points within `radius` of the robot.
-    fn near(&self, radius: f64) -> Vec<(f64, f64)> {
+    fn near(&self, radius: f64) -> Vec<Point> {
         let r2 = radius * radius;
         self.recent
             .iter()
             .flatten()
-            .filter(|h| (h.0 - self.p.0).powi(2) + (h.1 - self.p.1).powi(2) <= r2)
+            .filter(|h| (h.x - self.p.x).powi(2) + (h.y - self.p.y).powi(2) <= r2)
             .copied()
             .collect()
     }
 
     /// Moves to `q` in `state`: counts length, checks the exact clearance,
     /// records the position and scans.
-    pub(crate) fn advance(&mut self, q: (f64, f64), state: State) -> Result<()> {
-        let d = (q.0 - self.p.0).hypot(q.1 - self.p.1);
+    pub(crate) fn advance(&mut self, q: Point, state: State) -> Result<()> {
+        let d = (q.x - self.p.x).hypot(q.y - self.p.y);
         if d < 1e-12 {
             return Ok(());
         }
-        let mid = ((q.0 + self.p.0) / 2.0, (q.1 + self.p.1) / 2.0);
+        let mid = Point::new((q.x + self.p.x) / 2.0, (q.y + self.p.y) / 2.0);
         let c = self.world.clearance(q).0.min(self.world.clearance(mid).0);
         self.min_clearance = self.min_clearance.min(c);
         if c < self.r - 1e-9 {
             self.collisions += 1;
         }
-        self.heading = (q.1 - self.p.1).atan2(q.0 - self.p.0);
+        self.heading = (q.y - self.p.y).atan2(q.x - self.p.x);
         self.length += d;
         self.p = q;
         self.trace.push(TracePoint {
-            x: q.0,
-            y: q.1,
+            x: q.x,
+            y: q.y,
             state,
         });
         self.map.visit(q);
@@ -211,13 +212,13 @@ impl<'w> Body<'w> {
     }
 
     /// Motion to boundary along `dir_y` (+1 up, −1 down); returns the contact.
-    pub(crate) fn lap(&mut self, dir_y: f64) -> Result<(f64, f64)> {
+    pub(crate) fn lap(&mut self, dir_y: f64) -> Result<Point> {
         loop {
             let near = self.near(self.keep + self.lap_step + 0.5);
             let mut free = f64::INFINITY;
             for h in &near {
-                let along = (h.1 - self.p.1) * dir_y;
-                let lat = (h.0 - self.p.0).abs();
+                let along = (h.y - self.p.y) * dir_y;
+                let lat = (h.x - self.p.x).abs();
                 // A wall beside the lap, read short by noise, is not ahead.
                 if along > 0.0 && lat < self.keep - self.beside {
                     free = free.min(along - (self.keep * self.keep - lat * lat).sqrt());
@@ -227,7 +228,10 @@ impl<'w> Body<'w> {
                 return Ok(self.p);
             }
             let s = free.min(self.lap_step);
-            self.advance((self.p.0, self.p.1 + dir_y * s), State::MotionToBoundary)?;
+            self.advance(
+                Point::new(self.p.x, self.p.y + dir_y * s),
+                State::MotionToBoundary,
+            )?;
         }
     }
 
@@ -237,14 +241,14 @@ impl<'w> Body<'w> {
     /// sensed point (a gap within noise of the robot's width), the distance
     /// kept is relaxed in steps of one noise deviation, never below `r`
     /// plus a third of `δ`.
-    pub(crate) fn follow_target(&self, turn: f64) -> Option<(f64, f64)> {
+    pub(crate) fn follow_target(&self, turn: f64) -> Option<Point> {
         let near = self.near(self.keep + self.step + 0.15);
         let nearest = near.iter().min_by(|a, b| {
-            let da = (a.0 - self.p.0).powi(2) + (a.1 - self.p.1).powi(2);
-            let db = (b.0 - self.p.0).powi(2) + (b.1 - self.p.1).powi(2);
+            let da = (a.x - self.p.x).powi(2) + (a.y - self.p.y).powi(2);
+            let db = (b.x - self.p.x).powi(2) + (b.y - self.p.y).powi(2);
             da.total_cmp(&db)
         })?;
-        let phi0 = (nearest.1 - self.p.1).atan2(nearest.0 - self.p.0);
+        let phi0 = (nearest.y - self.p.y).atan2(nearest.x - self.p.x);
         let steps = (TAU / TURN_STEP) as usize;
         let floor = self.r + (self.keep - self.r) / 3.0;
         let mut keep = self.keep;
@@ -252,12 +256,12 @@ impl<'w> Body<'w> {
             let keep2 = keep * keep - 1e-12;
             let found = (0..steps).find_map(|k| {
                 let phi = phi0 + turn * k as f64 * TURN_STEP;
-                let q = (
-                    self.p.0 + self.step * phi.cos(),
-                    self.p.1 + self.step * phi.sin(),
+                let q = Point::new(
+                    self.p.x + self.step * phi.cos(),
+                    self.p.y + self.step * phi.sin(),
                 );
                 near.iter()
-                    .all(|h| (h.0 - q.0).powi(2) + (h.1 - q.1).powi(2) >= keep2)
+                    .all(|h| (h.x - q.x).powi(2) + (h.y - q.y).powi(2) >= keep2)
                     .then_some(q)
             });
             if found.is_some() || self.noise_sd == 0.0 || keep <= floor {
@@ -276,17 +280,17 @@ impl<'w> Body<'w> {
 
     /// Travels along `route` (metre waypoints) in steps no longer than the
     /// lap step.
-    pub(crate) fn travel(&mut self, route: &[(f64, f64)]) -> Result<()> {
+    pub(crate) fn travel(&mut self, route: &[Point]) -> Result<()> {
         for &q in route {
             loop {
-                let d = (q.0 - self.p.0).hypot(q.1 - self.p.1);
+                let d = (q.x - self.p.x).hypot(q.y - self.p.y);
                 if d < 1e-9 {
                     break;
                 }
                 let s = d.min(self.lap_step) / d;
-                let next = (
-                    self.p.0 + s * (q.0 - self.p.0),
-                    self.p.1 + s * (q.1 - self.p.1),
+                let next = Point::new(
+                    self.p.x + s * (q.x - self.p.x),
+                    self.p.y + s * (q.y - self.p.y),
                 );
                 self.advance(next, State::Transit)?;
             }

@@ -22,6 +22,7 @@
 //! about which way the boundary continues.
 
 use crate::{CriticalKind, Detection};
+use oxcover_grid::Point;
 
 use super::Config;
 use super::body::Body;
@@ -44,10 +45,10 @@ enum Exit {
 #[derive(Clone, Copy, Debug)]
 struct Extreme {
     xi: f64,
-    robot: (f64, f64),
+    robot: Point,
     /// Side of the boundary from the robot along x (±1).
     towards: f64,
-    contact: (f64, f64),
+    contact: Point,
     detection: Detection,
 }
 
@@ -85,7 +86,7 @@ pub(crate) struct Explorer<'w> {
 
 impl<'w> Explorer<'w> {
     pub(crate) fn new(body: Body<'w>, cfg: &Config) -> Self {
-        let x0 = body.p.0;
+        let x0 = body.p.x;
         Self {
             body,
             reeb: Reeb::default(),
@@ -132,10 +133,10 @@ impl<'w> Explorer<'w> {
         }
         let map = &self.body.map;
         let pass = map.passable(self.body.keep + map.resolution());
-        let targets: Vec<(f64, f64)> = items.iter().map(|i| i.3).collect();
+        let targets: Vec<Point> = items.iter().map(|i| i.3).collect();
         let (dist, parent) = map.distances(&pass, self.body.p, &targets);
-        let reach = |p: (f64, f64)| {
-            let direct = (p.0 - self.body.p.0).hypot(p.1 - self.body.p.1);
+        let reach = |p: Point| {
+            let direct = (p.x - self.body.p.x).hypot(p.y - self.body.p.y);
             if direct < 1e-9 {
                 return Some(0.0);
             }
@@ -185,7 +186,7 @@ impl<'w> Explorer<'w> {
             // Back on the start interval's stretch of slice a: closed. (Its
             // ends, not only the one opposite the start: where the boundary
             // is steep, noise moves the crossing along the slice.)
-            if exit == Exit::A && p.1 >= start.lo.1 - self.close && p.1 <= start.hi.1 + self.close {
+            if exit == Exit::A && p.y >= start.lo.y - self.close && p.y <= start.hi.y + self.close {
                 self.finish(record, a, s, trace_from);
                 return Ok(());
             }
@@ -194,13 +195,13 @@ impl<'w> Explorer<'w> {
             // miss the start's stretch).
             if exits
                 .iter()
-                .any(|&(e, y)| e == exit && (y - p.1).abs() < self.close)
+                .any(|&(e, y)| e == exit && (y - p.y).abs() < self.close)
             {
                 self.counters.forced_closures += 1;
                 self.finish(record, a, s, trace_from);
                 return Ok(());
             }
-            exits.push((exit, p.1));
+            exits.push((exit, p.y));
             // Lap along the slice, away from the boundary just followed.
             let dir = turn * self.body_heading_x().signum();
             let q = self.body.lap(dir)?;
@@ -235,7 +236,7 @@ impl<'w> Explorer<'w> {
     fn finish(&mut self, mut record: SlabRecord, a: i64, s: f64, trace_from: usize) {
         record.boundary = self.body.trace[trace_from..]
             .iter()
-            .map(|t| (t.x, t.y))
+            .map(|t| Point::new(t.x, t.y))
             .collect();
         for &j in &record.intervals {
             let iv = &mut self.reeb.intervals[j];
@@ -260,18 +261,18 @@ impl<'w> Explorer<'w> {
         let mut trend = if from_a { 1.0 } else { -1.0 };
         let mut ext = self.extreme(s);
         // (ξ, y) of the positions since the last turning point.
-        let mut since = vec![(ext.xi, ext.robot.1)];
+        let mut since = vec![Point::new(ext.xi, ext.robot.y)];
         let mut moved = 0.0;
         let guard = START_GUARD_STEPS * self.step;
         loop {
             let q = self.body.follow_target(turn).ok_or_else(|| {
                 Error::Internal(format!(
                     "sensor-bcd: lost the boundary at ({:.3}, {:.3})",
-                    self.body.p.0, self.body.p.1
+                    self.body.p.x, self.body.p.y
                 ))
             })?;
             let p = self.body.p;
-            let (xi_p, xi_q) = (s * p.0, s * q.0);
+            let (xi_p, xi_q) = (s * p.x, s * q.x);
             let exit = if xi_q >= xi_b && (from_a || moved > guard) {
                 Some((Exit::B, xi_b))
             } else if xi_q <= xi_a && (!from_a || moved > guard) {
@@ -286,15 +287,15 @@ impl<'w> Explorer<'w> {
                     } else {
                         0.0
                     };
-                    (p.0 + t * (q.0 - p.0), p.1 + t * (q.1 - p.1))
+                    Point::new(p.x + t * (q.x - p.x), p.y + t * (q.y - p.y))
                 }
                 None => q,
             };
             let state = self.body.following_state();
             self.body.advance(target, state)?;
             moved += self.step;
-            let xi = s * self.body.p.0;
-            since.push((xi, self.body.p.1));
+            let xi = s * self.body.p.x;
+            since.push(Point::new(xi, self.body.p.y));
             if trend > 0.0 {
                 if xi > ext.xi {
                     ext = self.extreme(s);
@@ -302,7 +303,7 @@ impl<'w> Explorer<'w> {
                     self.turning_point(ext, &since, true, s, record);
                     trend = -1.0;
                     ext = self.extreme(s);
-                    since = vec![(xi, self.body.p.1)];
+                    since = vec![Point::new(xi, self.body.p.y)];
                 }
             } else if xi < ext.xi {
                 ext = self.extreme(s);
@@ -310,7 +311,7 @@ impl<'w> Explorer<'w> {
                 self.turning_point(ext, &since, false, s, record);
                 trend = 1.0;
                 ext = self.extreme(s);
-                since = vec![(xi, self.body.p.1)];
+                since = vec![Point::new(xi, self.body.p.y)];
             }
             if let Some((e, _)) = exit {
                 // Leaving by slice a means going −ξ, by b going +ξ; a missing
@@ -329,23 +330,23 @@ impl<'w> Explorer<'w> {
     fn extreme(&mut self, s: f64) -> Extreme {
         let p = self.body.p;
         let nearest = self.body.nearest.map_or(p, |n| n.0);
-        let dx = nearest.0 - p.0;
+        let dx = nearest.x - p.x;
         let towards = if dx.abs() > 1e-6 { dx.signum() } else { s };
         // Fired along x; when that ray grazes past a thin tip (it returns
         // much farther than the nearest point), aimed at the nearest point.
         let keep = self.body.keep;
-        let far = |r: &crate::Returns| (r.centre.0 - p.0).hypot(r.centre.1 - p.1) > 2.0 * keep;
+        let far = |r: &crate::Returns| (r.centre.x - p.x).hypot(r.centre.y - p.y) > 2.0 * keep;
         let mut returns = self.body.detect(if towards > 0.0 {
             0.0
         } else {
             std::f64::consts::PI
         });
         if returns.as_ref().is_none_or(far) {
-            returns = self.body.detect((nearest.1 - p.1).atan2(nearest.0 - p.0));
+            returns = self.body.detect((nearest.y - p.y).atan2(nearest.x - p.x));
         }
         let detection = returns.map_or(Detection::Blind, |r| self.body.detector.classify(p, &r));
         Extreme {
-            xi: s * p.0,
+            xi: s * p.x,
             robot: p,
             towards,
             contact: returns.map_or(nearest, |r| r.centre),
@@ -360,19 +361,19 @@ impl<'w> Explorer<'w> {
     fn turning_point(
         &mut self,
         e: Extreme,
-        since: &[(f64, f64)],
+        since: &[Point],
         is_max: bool,
         s: f64,
         record: &mut SlabRecord,
     ) {
         let at = since
             .iter()
-            .position(|&(xi, y)| xi == e.xi && y == e.robot.1)
+            .position(|q| q.x == e.xi && q.y == e.robot.y)
             .unwrap_or(0);
-        let near = |k: &usize| (since[*k].0 - e.xi).abs() <= self.hysteresis;
+        let near = |k: &usize| (since[*k].x - e.xi).abs() <= self.hysteresis;
         let first = (0..=at).rev().take_while(near).last().unwrap_or(at);
         let last = (at..since.len()).take_while(near).last().unwrap_or(at);
-        let ys = since[first..=last].iter().map(|p| p.1);
+        let ys = since[first..=last].iter().map(|p| p.y);
         let span = (
             ys.clone().fold(f64::INFINITY, f64::min),
             ys.fold(f64::NEG_INFINITY, f64::max),

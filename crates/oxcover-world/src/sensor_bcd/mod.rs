@@ -58,6 +58,7 @@ mod reeb;
 mod robot_map;
 
 use crate::WorldGeometry;
+use oxcover_grid::Point;
 use serde::Serialize;
 
 pub use cycle::Counters;
@@ -249,7 +250,7 @@ pub struct Exploration {
     /// Smallest exact distance from the path to the world's boundary (m).
     pub min_clearance: f64,
     /// Points the robot sensed as occupied (its map's occupied cells).
-    pub sensed: Vec<(f64, f64)>,
+    pub sensed: Vec<Point>,
     /// Whether every slab side was traced (nothing left unreachable).
     pub complete: bool,
 }
@@ -261,12 +262,12 @@ pub struct Exploration {
 /// stand at; [`Error::Internal`] when the robot loses the boundary, a cycle
 /// does not close or the path exceeds `max_length` (bugs, or a world the
 /// method cannot handle).
-pub fn explore(world: &WorldGeometry, start: (f64, f64), cfg: &Config) -> Result<Exploration> {
+pub fn explore(world: &WorldGeometry, start: Point, cfg: &Config) -> Result<Exploration> {
     cfg.check()?;
-    if !(start.0.is_finite() && start.1.is_finite()) {
+    if !(start.x.is_finite() && start.y.is_finite()) {
         return Err(Error::BadParameter {
             name: "start",
-            value: format!("({}, {})", start.0, start.1),
+            value: format!("({}, {})", start.x, start.y),
             expected: "finite coordinates",
         });
     }
@@ -275,7 +276,7 @@ pub fn explore(world: &WorldGeometry, start: (f64, f64), cfg: &Config) -> Result
     if clear < keep {
         return Err(Error::BadParameter {
             name: "start",
-            value: format!("({}, {})", start.0, start.1),
+            value: format!("({}, {})", start.x, start.y),
             expected: if clear < 0.0 {
                 "a point in free space (this one is in an obstacle or outside the boundary)"
             } else {

@@ -17,6 +17,7 @@
 //! (those between two critical points of one slab hold no lap).
 
 use crate::{Convexity, CriticalKind, Event};
+use oxcover_grid::Point;
 use serde::Serialize;
 
 /// Detections closer than this (m) are one critical point.
@@ -30,9 +31,9 @@ pub(crate) struct Interval {
     /// Slice index.
     pub slice: i64,
     /// Lower contact (robot position).
-    pub lo: (f64, f64),
+    pub lo: Point,
     /// Upper contact (robot position).
-    pub hi: (f64, f64),
+    pub hi: Point,
     /// Whether the slab towards −x (index 0) and towards +x (index 1) has been traced.
     pub done: [bool; 2],
 }
@@ -50,7 +51,7 @@ pub(crate) struct SlabRecord {
     pub criticals: Vec<usize>,
     /// The robot's positions round the component's boundary (closed by the
     /// start interval's lap).
-    pub boundary: Vec<(f64, f64)>,
+    pub boundary: Vec<Point>,
 }
 
 /// A critical point the robot found.
@@ -59,9 +60,9 @@ pub struct DetectedCritical {
     /// Index in the list.
     pub id: usize,
     /// The boundary point the detector's centre ray hit (m).
-    pub at: (f64, f64),
+    pub at: Point,
     /// Where the robot was (m).
-    pub robot: (f64, f64),
+    pub robot: Point,
     /// The robot's y range along the stretch it followed within the
     /// hysteresis of this extreme (a point, or a wall along y).
     pub span: (f64, f64),
@@ -82,7 +83,7 @@ pub struct CellEdge {
     /// Critical point at its +x end, if found.
     pub to: Option<usize>,
     /// Its laps, in x order: (lower, upper) robot positions.
-    pub laps: Vec<((f64, f64), (f64, f64))>,
+    pub laps: Vec<(Point, Point)>,
     /// Whether the slabs on both sides of every lap have been traced.
     pub covered: bool,
 }
@@ -106,17 +107,17 @@ pub(crate) struct Reeb {
 
 impl Reeb {
     /// The interval `(lo, hi)` on `slice`: a known one it overlaps, or a new one.
-    pub(crate) fn interval(&mut self, slice: i64, a: (f64, f64), b: (f64, f64)) -> usize {
-        let (lo, hi) = if a.1 <= b.1 { (a, b) } else { (b, a) };
-        let len = hi.1 - lo.1;
+    pub(crate) fn interval(&mut self, slice: i64, a: Point, b: Point) -> usize {
+        let (lo, hi) = if a.y <= b.y { (a, b) } else { (b, a) };
+        let len = hi.y - lo.y;
         let found = self.intervals.iter().position(|k| {
             if k.slice != slice {
                 return false;
             }
-            let overlap = hi.1.min(k.hi.1) - lo.1.max(k.lo.1);
-            let shorter = len.min(k.hi.1 - k.lo.1);
+            let overlap = hi.y.min(k.hi.y) - lo.y.max(k.lo.y);
+            let shorter = len.min(k.hi.y - k.lo.y);
             overlap > 0.5 * shorter
-                || ((lo.1 - k.lo.1).abs() < SAME_POINT && (hi.1 - k.hi.1).abs() < SAME_POINT)
+                || ((lo.y - k.lo.y).abs() < SAME_POINT && (hi.y - k.hi.y).abs() < SAME_POINT)
         });
         found.unwrap_or_else(|| {
             self.intervals.push(Interval {
@@ -135,16 +136,16 @@ impl Reeb {
     /// hysteresis, y ranges overlapping).
     pub(crate) fn critical(
         &mut self,
-        at: (f64, f64),
-        robot: (f64, f64),
+        at: Point,
+        robot: Point,
         span: (f64, f64),
         kind: CriticalKind,
         confirmed: bool,
         hysteresis: f64,
     ) -> usize {
         if let Some(c) = self.criticals.iter().find(|c| {
-            (c.at.0 - at.0).hypot(c.at.1 - at.1) < SAME_POINT
-                || ((c.robot.0 - robot.0).abs() <= 2.0 * hysteresis
+            (c.at.x - at.x).hypot(c.at.y - at.y) < SAME_POINT
+                || ((c.robot.x - robot.x).abs() <= 2.0 * hysteresis
                     && c.span.0 <= span.1 + SAME_POINT
                     && span.0 <= c.span.1 + SAME_POINT
                     && c.kind == kind)
@@ -265,7 +266,7 @@ impl Reeb {
         let mut cs: Vec<(f64, usize)> = s
             .criticals
             .iter()
-            .map(|&c| (self.criticals[c].robot.0.clamp(xa, xb), c))
+            .map(|&c| (self.criticals[c].robot.x.clamp(xa, xb), c))
             .collect();
         cs.sort_by(|p, q| p.0.total_cmp(&q.0));
         for (x, c) in cs {
@@ -288,7 +289,7 @@ impl Reeb {
             let mut ys: Vec<f64> = (0..b.len())
                 .filter_map(|i| {
                     let (p, q) = (b[i], b[(i + 1) % b.len()]);
-                    ((p.0 < x) != (q.0 < x)).then(|| p.1 + (q.1 - p.1) * (x - p.0) / (q.0 - p.0))
+                    ((p.x < x) != (q.x < x)).then(|| p.y + (q.y - p.y) * (x - p.x) / (q.x - p.x))
                 })
                 .collect();
             if ys.len() % 2 == 1 {
@@ -305,7 +306,7 @@ impl Reeb {
         let (left, right) = self.sides(s);
         for (ivs, k) in [(&left, 0), (&right, lines.len() - 1)] {
             for &iv in ivs {
-                let (lo, hi) = (self.intervals[iv].lo.1, self.intervals[iv].hi.1);
+                let (lo, hi) = (self.intervals[iv].lo.y, self.intervals[iv].hi.y);
                 let best = lines[k]
                     .iter()
                     .enumerate()
@@ -355,7 +356,7 @@ impl Reeb {
                     })
             };
             let gap = |c: usize, (lo, hi): (f64, f64)| {
-                let y = self.criticals[c].robot.1;
+                let y = self.criticals[c].robot.y;
                 (y - y.clamp(lo, hi)).abs()
             };
             let mut owned: Vec<Vec<usize>> = vec![Vec::new(); parts.len()];
@@ -410,7 +411,7 @@ impl Reeb {
         let (left, right) = self.sides(s);
         let item = |iv: usize| {
             let i = &self.intervals[iv];
-            (iv, i.lo.0, (i.lo.1, i.hi.1))
+            (iv, i.lo.x, (i.lo.y, i.hi.y))
         };
         let left: Vec<Item> = left.into_iter().map(item).collect();
         let right: Vec<Item> = right.into_iter().map(item).collect();
@@ -447,9 +448,9 @@ impl Reeb {
         let want_after: Vec<usize> = cs.iter().map(|&c| want(self.criticals[c].kind).1).collect();
         let distance = |&(_, x, (lo, hi)): &Item, c: usize| {
             let p = self.criticals[c].robot;
-            (p.0 - x).hypot(p.1 - p.1.clamp(lo, hi))
+            (p.x - x).hypot(p.y - p.y.clamp(lo, hi))
         };
-        let x = |j: usize| self.criticals[cs[j]].robot.0;
+        let x = |j: usize| self.criticals[cs[j]].robot.x;
         // Joins the places left over: `after[a]` to `before[b]`, nearest in
         // x first, never both ways; what it could not join stays.
         let join = |after: &mut [usize], before: &mut [usize]| {
@@ -600,14 +601,14 @@ impl UnionFind {
 
 /// An x in `(lo, hi)` where the closed polyline `b` runs least along
 /// x = const: of a few candidates, the one farthest from every vertex's x.
-fn quiet_line(b: &[(f64, f64)], lo: f64, hi: f64) -> f64 {
+fn quiet_line(b: &[Point], lo: f64, hi: f64) -> f64 {
     [0.5, 0.35, 0.65, 0.2, 0.8]
         .iter()
         .map(|f| lo + f * (hi - lo))
         .map(|x| {
             let gap = b
                 .iter()
-                .map(|p| (p.0 - x).abs())
+                .map(|p| (p.x - x).abs())
                 .fold(f64::INFINITY, f64::min);
             (gap, x)
         })
@@ -631,22 +632,32 @@ mod tests {
     #[test]
     fn intervals_match_on_their_slice_only() {
         let mut r = Reeb::default();
-        let a = r.interval(0, (0.0, 0.2), (0.0, 3.0));
-        assert_eq!(r.interval(0, (0.0, 2.9), (0.0, 0.25)), a);
-        assert_ne!(r.interval(1, (0.5, 0.2), (0.5, 3.0)), a);
+        let a = r.interval(0, Point::new(0.0, 0.2), Point::new(0.0, 3.0));
+        assert_eq!(
+            r.interval(0, Point::new(0.0, 2.9), Point::new(0.0, 0.25)),
+            a
+        );
+        assert_ne!(r.interval(1, Point::new(0.5, 0.2), Point::new(0.5, 3.0)), a);
         // Another interval of the same slice, past an obstacle.
-        assert_ne!(r.interval(0, (0.0, 3.5), (0.0, 5.0)), a);
+        assert_ne!(r.interval(0, Point::new(0.0, 3.5), Point::new(0.0, 5.0)), a);
         assert_eq!(r.intervals.len(), 3);
     }
 
     #[test]
     fn repeats_merge_and_walls_along_y_are_one_point() {
         let mut r = Reeb::default();
-        let a = r.critical((1.0, 1.0), (0.76, 1.0), (1.0, 1.0), IN_CONVEX, true, 0.01);
+        let a = r.critical(
+            Point::new(1.0, 1.0),
+            Point::new(0.76, 1.0),
+            (1.0, 1.0),
+            IN_CONVEX,
+            true,
+            0.01,
+        );
         assert_eq!(
             r.critical(
-                (1.02, 1.01),
-                (0.78, 1.01),
+                Point::new(1.02, 1.01),
+                Point::new(0.78, 1.01),
                 (1.01, 1.01),
                 IN_CONVEX,
                 true,
@@ -655,16 +666,30 @@ mod tests {
             a
         );
         // One wall along y found at two heights: the same critical stretch.
-        let w = r.critical((5.0, 1.0), (4.76, 1.0), (0.5, 2.0), OUT_CONVEX, true, 0.01);
+        let w = r.critical(
+            Point::new(5.0, 1.0),
+            Point::new(4.76, 1.0),
+            (0.5, 2.0),
+            OUT_CONVEX,
+            true,
+            0.01,
+        );
         assert_eq!(
-            r.critical((5.0, 1.8), (4.765, 1.8), (1.5, 2.5), OUT_CONVEX, true, 0.01),
+            r.critical(
+                Point::new(5.0, 1.8),
+                Point::new(4.765, 1.8),
+                (1.5, 2.5),
+                OUT_CONVEX,
+                true,
+                0.01
+            ),
             w
         );
         // Facing walls of a narrow gap at nearly the same x stay apart.
         assert_ne!(
             r.critical(
-                (5.5, 1.5),
-                (4.77, 1.5),
+                Point::new(5.5, 1.5),
+                Point::new(4.77, 1.5),
                 (1.0, 2.0),
                 CriticalKind {
                     convexity: Convexity::Concave,
@@ -684,13 +709,27 @@ mod tests {
         // hand: slab 0–1 plain, slab 1–2 holds the split (one interval on
         // slice 1, two on slice 2), slab 2–3 the merge.
         let mut r = Reeb::default();
-        let i0 = r.interval(0, (0.0, 0.0), (0.0, 4.0));
-        let i1 = r.interval(1, (1.0, 0.0), (1.0, 4.0));
-        let lo2 = r.interval(2, (2.0, 0.0), (2.0, 1.5));
-        let hi2 = r.interval(2, (2.0, 2.5), (2.0, 4.0));
-        let i3 = r.interval(3, (3.0, 0.0), (3.0, 4.0));
-        let split = r.critical((1.5, 2.0), (1.26, 2.0), (2.0, 2.0), IN_CONVEX, true, 0.01);
-        let merge = r.critical((2.5, 2.0), (2.74, 2.0), (2.0, 2.0), OUT_CONVEX, true, 0.01);
+        let i0 = r.interval(0, Point::new(0.0, 0.0), Point::new(0.0, 4.0));
+        let i1 = r.interval(1, Point::new(1.0, 0.0), Point::new(1.0, 4.0));
+        let lo2 = r.interval(2, Point::new(2.0, 0.0), Point::new(2.0, 1.5));
+        let hi2 = r.interval(2, Point::new(2.0, 2.5), Point::new(2.0, 4.0));
+        let i3 = r.interval(3, Point::new(3.0, 0.0), Point::new(3.0, 4.0));
+        let split = r.critical(
+            Point::new(1.5, 2.0),
+            Point::new(1.26, 2.0),
+            (2.0, 2.0),
+            IN_CONVEX,
+            true,
+            0.01,
+        );
+        let merge = r.critical(
+            Point::new(2.5, 2.0),
+            Point::new(2.74, 2.0),
+            (2.0, 2.0),
+            OUT_CONVEX,
+            true,
+            0.01,
+        );
         let slab = |left, intervals: Vec<usize>, criticals: Vec<usize>| SlabRecord {
             left,
             x: (f64::from(left as i32), f64::from(left as i32 + 1)),
@@ -730,12 +769,26 @@ mod tests {
         // (lower), both between slices 7.0 and 7.5: above the C, its pocket
         // and below it enter the slab; one cell leaves it.
         let mut r = Reeb::default();
-        let above = r.interval(14, (7.0, 7.6), (7.0, 9.8));
-        let pocket = r.interval(14, (7.0, 4.5), (7.0, 5.6));
-        let below = r.interval(14, (7.0, 0.2), (7.0, 2.5));
-        let after = r.interval(15, (7.5, 0.2), (7.5, 9.8));
-        let upper = r.critical((7.1, 6.0), (7.34, 6.0), (6.0, 6.0), OUT_CONVEX, true, 0.01);
-        let lower = r.critical((7.2, 4.0), (7.44, 4.0), (4.0, 4.0), OUT_CONVEX, true, 0.01);
+        let above = r.interval(14, Point::new(7.0, 7.6), Point::new(7.0, 9.8));
+        let pocket = r.interval(14, Point::new(7.0, 4.5), Point::new(7.0, 5.6));
+        let below = r.interval(14, Point::new(7.0, 0.2), Point::new(7.0, 2.5));
+        let after = r.interval(15, Point::new(7.5, 0.2), Point::new(7.5, 9.8));
+        let upper = r.critical(
+            Point::new(7.1, 6.0),
+            Point::new(7.34, 6.0),
+            (6.0, 6.0),
+            OUT_CONVEX,
+            true,
+            0.01,
+        );
+        let lower = r.critical(
+            Point::new(7.2, 4.0),
+            Point::new(7.44, 4.0),
+            (4.0, 4.0),
+            OUT_CONVEX,
+            true,
+            0.01,
+        );
         r.slabs.push(SlabRecord {
             left: 14,
             x: (7.0, 7.5),

@@ -8,6 +8,7 @@
 //! (unknown counts as blocked). Moves are 8-connected; the route is then
 //! shortened by straight segments that stay in the seen-free cells.
 
+use oxcover_grid::Point;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
@@ -20,13 +21,13 @@ const OCCUPIED: u8 = 2;
 pub(crate) struct RobotMap {
     res: f64,
     /// Lower-left corner of cell (0, 0).
-    origin: (f64, f64),
+    origin: Point,
     w: usize,
     h: usize,
     cells: Vec<u8>,
     /// 1 + index into `visits` of the first position recorded in the cell, or 0.
     visited: Vec<u32>,
-    visits: Vec<(f64, f64)>,
+    visits: Vec<Point>,
 }
 
 /// Cells a route may use, from [`RobotMap::passable`].
@@ -39,13 +40,13 @@ pub(crate) struct Passable {
 
 impl RobotMap {
     /// An empty map of `res` cells around `centre`.
-    pub(crate) fn new(res: f64, centre: (f64, f64)) -> Self {
+    pub(crate) fn new(res: f64, centre: Point) -> Self {
         let n = (4.0 / res).ceil() as usize;
         Self {
             res,
-            origin: (
-                centre.0 - n as f64 * res / 2.0,
-                centre.1 - n as f64 * res / 2.0,
+            origin: Point::new(
+                centre.x - n as f64 * res / 2.0,
+                centre.y - n as f64 * res / 2.0,
             ),
             w: n,
             h: n,
@@ -60,21 +61,21 @@ impl RobotMap {
         self.res
     }
 
-    fn coords(&self, p: (f64, f64)) -> (i64, i64) {
+    fn coords(&self, p: Point) -> (i64, i64) {
         (
-            ((p.0 - self.origin.0) / self.res).floor() as i64,
-            ((p.1 - self.origin.1) / self.res).floor() as i64,
+            ((p.x - self.origin.x) / self.res).floor() as i64,
+            ((p.y - self.origin.y) / self.res).floor() as i64,
         )
     }
 
-    fn index_of(&self, p: (f64, f64)) -> Option<usize> {
+    fn index_of(&self, p: Point) -> Option<usize> {
         let (i, j) = self.coords(p);
         (i >= 0 && j >= 0 && (i as usize) < self.w && (j as usize) < self.h)
             .then(|| j as usize * self.w + i as usize)
     }
 
     /// Grows the map so `p` lies inside, with room to spare.
-    fn ensure(&mut self, p: (f64, f64)) -> usize {
+    fn ensure(&mut self, p: Point) -> usize {
         if let Some(k) = self.index_of(p) {
             return k;
         }
@@ -100,9 +101,9 @@ impl RobotMap {
             cells[to..to + self.w].copy_from_slice(&self.cells[from..from + self.w]);
             visited[to..to + self.w].copy_from_slice(&self.visited[from..from + self.w]);
         }
-        self.origin = (
-            self.origin.0 - left as f64 * self.res,
-            self.origin.1 - down as f64 * self.res,
+        self.origin = Point::new(
+            self.origin.x - left as f64 * self.res,
+            self.origin.y - down as f64 * self.res,
         );
         (self.w, self.h, self.cells, self.visited) = (w, h, cells, visited);
         self.index_of(p).expect("the grown map contains the point")
@@ -110,14 +111,14 @@ impl RobotMap {
 
     /// Marks the ray from `from` to `to` seen free, and `to` occupied when
     /// the ray hit something there.
-    pub(crate) fn ray(&mut self, from: (f64, f64), to: (f64, f64), hit: bool) {
-        let len = (to.0 - from.0).hypot(to.1 - from.1);
+    pub(crate) fn ray(&mut self, from: Point, to: Point, hit: bool) {
+        let len = (to.x - from.x).hypot(to.y - from.y);
         // Stop a cell short of the hit: the hit cell may be partly free.
         let free_len = if hit { len - self.res } else { len };
         let n = (free_len / (self.res / 2.0)).ceil().max(0.0) as usize;
         for k in 0..n {
             let t = k as f64 * self.res / 2.0 / len.max(1e-12);
-            let q = (from.0 + t * (to.0 - from.0), from.1 + t * (to.1 - from.1));
+            let q = Point::new(from.x + t * (to.x - from.x), from.y + t * (to.y - from.y));
             let c = self.ensure(q);
             if self.cells[c] == UNKNOWN {
                 self.cells[c] = FREE;
@@ -130,13 +131,13 @@ impl RobotMap {
     }
 
     /// Marks an obstacle point.
-    pub(crate) fn occupied(&mut self, p: (f64, f64)) {
+    pub(crate) fn occupied(&mut self, p: Point) {
         let c = self.ensure(p);
         self.cells[c] = OCCUPIED;
     }
 
     /// Records a position of the robot (known to be clear).
-    pub(crate) fn visit(&mut self, p: (f64, f64)) {
+    pub(crate) fn visit(&mut self, p: Point) {
         let c = self.ensure(p);
         if self.visited[c] == 0 {
             self.visits.push(p);
@@ -147,16 +148,16 @@ impl RobotMap {
         }
     }
 
-    fn centre(&self, k: usize) -> (f64, f64) {
+    fn centre(&self, k: usize) -> Point {
         let (i, j) = (k % self.w, k / self.w);
-        (
-            self.origin.0 + (i as f64 + 0.5) * self.res,
-            self.origin.1 + (j as f64 + 0.5) * self.res,
+        Point::new(
+            self.origin.x + (i as f64 + 0.5) * self.res,
+            self.origin.y + (j as f64 + 0.5) * self.res,
         )
     }
 
     /// Where a route through cell `k` passes: the first visit, or the centre.
-    fn waypoint(&self, k: usize) -> (f64, f64) {
+    fn waypoint(&self, k: usize) -> Point {
         match self.visited[k] {
             0 => self.centre(k),
             v => self.visits[v as usize - 1],
@@ -211,8 +212,8 @@ impl RobotMap {
     pub(crate) fn distances(
         &self,
         pass: &Passable,
-        from: (f64, f64),
-        targets: &[(f64, f64)],
+        from: Point,
+        targets: &[Point],
     ) -> (Vec<f64>, Vec<u32>) {
         let n = self.w * self.h;
         let mut is_target = vec![false; n];
@@ -274,14 +275,14 @@ impl RobotMap {
     }
 
     /// The cell index of `p`, if inside the map.
-    pub(crate) fn cell_index(&self, p: (f64, f64)) -> Option<usize> {
+    pub(crate) fn cell_index(&self, p: Point) -> Option<usize> {
         self.index_of(p)
     }
 
     /// The route from the search's source to `to`, as metre waypoints
     /// (ending exactly at `to`), shortened by straight segments through
     /// open cells.
-    pub(crate) fn route(&self, pass: &Passable, parent: &[u32], to: (f64, f64)) -> Vec<(f64, f64)> {
+    pub(crate) fn route(&self, pass: &Passable, parent: &[u32], to: Point) -> Vec<Point> {
         let Some(mut k) = self.index_of(to) else {
             return vec![to];
         };
@@ -291,7 +292,7 @@ impl RobotMap {
             cells.push(k);
         }
         cells.reverse();
-        let mut pts: Vec<(f64, f64)> = cells.iter().map(|&k| self.waypoint(k)).collect();
+        let mut pts: Vec<Point> = cells.iter().map(|&k| self.waypoint(k)).collect();
         pts.push(to);
         // String pulling: from each kept point, go as far as a straight
         // segment through open cells reaches.
@@ -313,13 +314,13 @@ impl RobotMap {
     }
 
     /// Whether the segment's samples lie in open cells (its end cells excepted).
-    fn segment_open(&self, pass: &Passable, a: (f64, f64), b: (f64, f64)) -> bool {
-        let len = (b.0 - a.0).hypot(b.1 - a.1);
+    fn segment_open(&self, pass: &Passable, a: Point, b: Point) -> bool {
+        let len = (b.x - a.x).hypot(b.y - a.y);
         let n = (len / (self.res / 2.0)).ceil() as usize;
         let (ka, kb) = (self.index_of(a), self.index_of(b));
         (1..n).all(|s| {
             let t = s as f64 / n as f64;
-            let q = (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1));
+            let q = Point::new(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y));
             match self.index_of(q) {
                 Some(k) => pass.open[k] || Some(k) == ka || Some(k) == kb,
                 None => false,
@@ -328,7 +329,7 @@ impl RobotMap {
     }
 
     /// Cells seen occupied, as metre centres (for pictures).
-    pub(crate) fn occupied_points(&self) -> Vec<(f64, f64)> {
+    pub(crate) fn occupied_points(&self) -> Vec<Point> {
         (0..self.w * self.h)
             .filter(|&k| self.cells[k] == OCCUPIED)
             .map(|k| self.centre(k))
@@ -342,27 +343,27 @@ mod tests {
 
     #[test]
     fn grows_marks_and_routes_around_what_it_saw() {
-        let mut m = RobotMap::new(0.1, (0.0, 0.0));
+        let mut m = RobotMap::new(0.1, Point::new(0.0, 0.0));
         // See a 6 m x 4 m room from its middle row, with a wall at x = 3
         // from y = 2.6 up.
         for k in 0..60 {
             let x = k as f64 * 0.1 + 0.05;
-            m.ray((x, 2.0), (x, 0.0), true);
-            m.ray((x, 2.0), (x, 4.0), true);
-            m.visit((x, 2.0));
+            m.ray(Point::new(x, 2.0), Point::new(x, 0.0), true);
+            m.ray(Point::new(x, 2.0), Point::new(x, 4.0), true);
+            m.visit(Point::new(x, 2.0));
         }
         for k in 26..40 {
-            m.occupied((3.0, k as f64 * 0.1));
+            m.occupied(Point::new(3.0, k as f64 * 0.1));
         }
         assert!(m.w * m.h > 40 * 40, "the map grew");
         let pass = m.passable(0.25);
-        let (dist, parent) = m.distances(&pass, (0.55, 2.0), &[(5.55, 2.0)]);
-        let k = m.cell_index((5.55, 2.0)).unwrap();
+        let (dist, parent) = m.distances(&pass, Point::new(0.55, 2.0), &[Point::new(5.55, 2.0)]);
+        let k = m.cell_index(Point::new(5.55, 2.0)).unwrap();
         assert!((dist[k] - 5.0).abs() < 0.2, "{}", dist[k]);
-        let r = m.route(&pass, &parent, (5.55, 2.0));
-        assert_eq!(*r.last().unwrap(), (5.55, 2.0));
+        let r = m.route(&pass, &parent, Point::new(5.55, 2.0));
+        assert_eq!(*r.last().unwrap(), Point::new(5.55, 2.0));
         // Unknown space is never entered.
-        let k = m.cell_index((1.0, 5.0));
+        let k = m.cell_index(Point::new(1.0, 5.0));
         assert!(k.is_none_or(|k| !pass.any[k]));
     }
 }
