@@ -18,6 +18,7 @@
 //!   paper used 11 box measurements of four points each.
 
 use nalgebra::{DMatrix, DVector, Matrix2, SymmetricEigen};
+use oxcover_grid::{Point, Pose};
 use serde::{Deserialize, Serialize};
 
 use crate::camera::{Distortion, Projection};
@@ -122,14 +123,14 @@ fn radius(width: u32, height: u32) -> f64 {
 }
 
 /// Distances of points to their total-least-squares line.
-fn line_residuals(points: &[(f64, f64)], out: &mut Vec<f64>) {
+fn line_residuals(points: &[Point], out: &mut Vec<f64>) {
     let n = points.len() as f64;
     let (mx, my) = points
         .iter()
-        .fold((0.0, 0.0), |a, p| (a.0 + p.0 / n, a.1 + p.1 / n));
+        .fold((0.0, 0.0), |a, p| (a.0 + p.x / n, a.1 + p.y / n));
     let mut cov = Matrix2::<f64>::zeros();
     for p in points {
-        let (dx, dy) = (p.0 - mx, p.1 - my);
+        let (dx, dy) = (p.x - mx, p.y - my);
         cov[(0, 0)] += dx * dx;
         cov[(0, 1)] += dx * dy;
         cov[(1, 1)] += dy * dy;
@@ -146,12 +147,12 @@ fn line_residuals(points: &[(f64, f64)], out: &mut Vec<f64>) {
     // A fixed sign (left of the first-to-last direction), so the residuals
     // are smooth in the parameters.
     if let (Some(a), Some(b)) = (points.first(), points.last()) {
-        if nrm.0 * -(b.1 - a.1) + nrm.1 * (b.0 - a.0) < 0.0 {
+        if nrm.0 * -(b.y - a.y) + nrm.1 * (b.x - a.x) < 0.0 {
             nrm = (-nrm.0, -nrm.1);
         }
     }
     for p in points {
-        out.push((p.0 - mx) * nrm.0 + (p.1 - my) * nrm.1);
+        out.push((p.x - mx) * nrm.0 + (p.y - my) * nrm.1);
     }
 }
 
@@ -162,7 +163,7 @@ fn line_residuals(points: &[(f64, f64)], out: &mut Vec<f64>) {
 /// [`Error::Calibration`] for fewer than three lines or a line of fewer than
 /// three points.
 pub fn calibrate_distortion(
-    lines: &[Vec<(f64, f64)>],
+    lines: &[Vec<Point>],
     width: u32,
     height: u32,
     guess: Distortion,
@@ -182,13 +183,13 @@ pub fn calibrate_distortion(
         let d = unpack(x);
         let mut out = Vec::new();
         for line in lines {
-            let pts: Vec<(f64, f64)> = line.iter().map(|p| d.undistort(p.0, p.1)).collect();
+            let pts: Vec<Point> = line.iter().map(|p| d.undistort(p.x, p.y)).collect();
             let from = out.len();
             line_residuals(&pts, &mut out);
             // Back to raw pixels: divide by the local radial scale, so the
             // fit cannot straighten lines by shrinking the image.
             for (r, p) in out[from..].iter_mut().zip(line) {
-                let (du, dv) = (p.0 - d.uc, p.1 - d.vc);
+                let (du, dv) = (p.x - d.uc, p.y - d.vc);
                 *r /= d.factor(du * du + dv * dv).abs().max(1e-9);
             }
         }
@@ -218,11 +219,11 @@ pub fn calibrate_distortion(
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FloorPair {
     /// Raw pixel `(u, v)`.
-    pub pixel: (f64, f64),
+    pub pixel: Point,
     /// Robot pose `(x, y, ω)`.
-    pub robot: (f64, f64, f64),
+    pub robot: Pose,
     /// Measured floor point (m, world frame).
-    pub floor: (f64, f64),
+    pub floor: Point,
 }
 
 /// The projection parameters from pixel–floor pairs, with the distortion
@@ -249,24 +250,25 @@ pub fn calibrate_projection(
         big_y: x[5],
         alpha: x[6],
     };
-    let corrected: Vec<(f64, f64)> = pairs
+    let corrected: Vec<Point> = pairs
         .iter()
-        .map(|p| distortion.undistort(p.pixel.0, p.pixel.1))
+        .map(|p| distortion.undistort(p.pixel.x, p.pixel.y))
         .collect();
     let residuals = |x: &DVector<f64>| {
         let proj = unpack(x);
         let mut out = Vec::with_capacity(2 * pairs.len());
-        for (pair, &(up, vp)) in pairs.iter().zip(&corrected) {
+        for (pair, q) in pairs.iter().zip(&corrected) {
+            let (up, vp) = (q.x, q.y);
             // The projection's formula, also past the horizon, so the
             // residual stays smooth while the fit moves.
             let dv = vp - proj.dv;
-            let p0 = (
+            let p0 = Point::new(
                 -(up - proj.du) * proj.big_x / dv + proj.x_cam,
                 -proj.big_y / dv + proj.y_cam,
             );
             let w = proj.to_world(pair.robot, p0);
-            out.push(w.0 - pair.floor.0);
-            out.push(w.1 - pair.floor.1);
+            out.push(w.x - pair.floor.x);
+            out.push(w.y - pair.floor.y);
         }
         DVector::from_vec(out)
     };
@@ -304,7 +306,7 @@ mod tests {
 
     /// Raw pixels of straight lines (straight after correction): a grid of
     /// lines across the image, as a chequerboard's edges would give.
-    fn lines(cam: &Camera, jitter: impl Fn(usize) -> (f64, f64)) -> Vec<Vec<(f64, f64)>> {
+    fn lines(cam: &Camera, jitter: impl Fn(usize) -> (f64, f64)) -> Vec<Vec<Point>> {
         let d = cam.distortion;
         let mut out = Vec::new();
         let mut k = 0;
@@ -322,14 +324,18 @@ mod tests {
             // Points (u', v') on a u' + b v' = c... parametrised along it.
             let (nx, ny): (f64, f64) = (a, b);
             let (tx, ty) = (-ny, nx);
-            let line: Vec<(f64, f64)> = (-8..=8)
+            let line: Vec<Point> = (-8..=8)
                 .filter_map(|t| {
                     let t = f64::from(t) * 14.0;
                     let (up, vp) = (c * nx + t * tx, c * ny + t * ty);
-                    let (u, v) = d.distort(up, vp)?;
+                    let (u, v) = {
+                        let p = d.distort(up, vp)?;
+                        (p.x, p.y)
+                    };
                     let (ju, jv) = jitter(k);
                     k += 1;
-                    (u >= 0.0 && v >= 0.0 && u < 320.0 && v < 240.0).then_some((u + ju, v + jv))
+                    (u >= 0.0 && v >= 0.0 && u < 320.0 && v < 240.0)
+                        .then_some(Point::new(u + ju, v + jv))
                 })
                 .collect();
             out.push(line);
@@ -388,9 +394,9 @@ mod tests {
         assert!(fit.rms < 0.5, "{}", fit.rms);
         let mut bend = Vec::new();
         for line in lines(&cam, |_| (0.0, 0.0)) {
-            let pts: Vec<(f64, f64)> = line
+            let pts: Vec<Point> = line
                 .iter()
-                .map(|p| fit.params.undistort(p.0, p.1))
+                .map(|p| fit.params.undistort(p.x, p.y))
                 .collect();
             line_residuals(&pts, &mut bend);
         }
@@ -403,13 +409,17 @@ mod tests {
     fn pairs(cam: &Camera, jitter: impl Fn(usize) -> (f64, f64)) -> Vec<FloorPair> {
         // 11 box placements, four corners each, seen from three poses.
         let mut out = Vec::new();
-        let poses = [(0.0, 0.0, 0.0), (1.0, 0.5, 0.4), (-0.5, 2.0, -0.3)];
+        let poses = [
+            Pose::new(0.0, 0.0, 0.0),
+            Pose::new(1.0, 0.5, 0.4),
+            Pose::new(-0.5, 2.0, -0.3),
+        ];
         let mut k = 0;
         for (i, &robot) in poses.iter().cycle().take(11).enumerate() {
             let ahead = 0.6 + 0.15 * i as f64;
             let side = -0.3 + 0.06 * i as f64;
             for (dx, dy) in [(0.0, 0.0), (0.3, 0.0), (0.0, 0.2), (0.3, 0.2)] {
-                let p = (side + dx, ahead + dy);
+                let p = Point::new(side + dx, ahead + dy);
                 let world = cam.projection.to_world(robot, p);
                 let Some(px) = cam.world_to_pixel(robot, world) else {
                     continue;
@@ -417,7 +427,7 @@ mod tests {
                 let (ju, jv) = jitter(k);
                 k += 1;
                 out.push(FloorPair {
-                    pixel: (px.0 + ju, px.1 + jv),
+                    pixel: Point::new(px.x + ju, px.y + jv),
                     robot,
                     floor: world,
                 });
@@ -477,7 +487,7 @@ mod tests {
             projection: fit.params,
             ..cam
         };
-        let robot = (0.0, 0.0, 0.0);
+        let robot = Pose::new(0.0, 0.0, 0.0);
         let mut worst: f64 = 0.0;
         for v in (130..240).step_by(10) {
             for u in (0..320).step_by(20) {
@@ -486,8 +496,8 @@ mod tests {
                     cam.pixel_to_world(robot, u, v),
                     fitted.pixel_to_world(robot, u, v),
                 ) {
-                    if a.0.hypot(a.1) < 2.0 {
-                        worst = worst.max((a.0 - b.0).hypot(a.1 - b.1));
+                    if a.x.hypot(a.y) < 2.0 {
+                        worst = worst.max((a.x - b.x).hypot(a.y - b.y));
                     }
                 }
             }

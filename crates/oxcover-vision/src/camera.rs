@@ -31,6 +31,7 @@
 //! `ω` measured from the map's x axis and a camera looking along it,
 //! `α = −π/2`.
 
+use oxcover_grid::{Point, Pose};
 use serde::{Deserialize, Serialize};
 
 /// Radial distortion about `(u_c, v_c)` (pixels), coefficients `p₁..p₃`.
@@ -52,10 +53,10 @@ impl Distortion {
 
     /// Corrected coordinates `(u', v')` (about the centre) of a raw pixel.
     #[must_use]
-    pub fn undistort(&self, u: f64, v: f64) -> (f64, f64) {
+    pub fn undistort(&self, u: f64, v: f64) -> Point {
         let (du, dv) = (u - self.uc, v - self.vc);
         let k = self.factor(du * du + dv * dv);
-        (du * k, dv * k)
+        Point::new(du * k, dv * k)
     }
 
     /// The raw pixel whose corrected coordinates are `(u', v')`: the
@@ -63,10 +64,10 @@ impl Distortion {
     /// radius; `None` where the correction is not invertible (its radial
     /// map stops growing before reaching the radius asked for).
     #[must_use]
-    pub fn distort(&self, up: f64, vp: f64) -> Option<(f64, f64)> {
+    pub fn distort(&self, up: f64, vp: f64) -> Option<Point> {
         let target = up.hypot(vp);
         if target == 0.0 {
-            return Some((self.uc, self.vc));
+            return Some(Point::new(self.uc, self.vc));
         }
         // g(r) = r·factor(r²) − target, increasing where the map is invertible.
         let g = |r: f64| r * self.factor(r * r) - target;
@@ -91,7 +92,7 @@ impl Distortion {
         }
         (g(r).abs() < 1e-9 * target.max(1.0)).then(|| {
             let s = r / target;
-            (self.uc + up * s, self.vc + vp * s)
+            Point::new(self.uc + up * s, self.vc + vp * s)
         })
     }
 }
@@ -136,11 +137,11 @@ impl Projection {
     /// or `None` on or above the horizon (`v' ≤ Δv` for a camera whose `Y`
     /// is negative, the usual case).
     #[must_use]
-    pub fn floor(&self, up: f64, vp: f64) -> Option<(f64, f64)> {
+    pub fn floor(&self, up: f64, vp: f64) -> Option<Point> {
         let dv = vp - self.dv;
         let ahead = -self.big_y / dv;
         (dv.abs() > 1e-12 && ahead * self.big_y.signum() < 0.0).then(|| {
-            (
+            Point::new(
                 -(up - self.du) * self.big_x / dv + self.x_cam,
                 ahead + self.y_cam,
             )
@@ -150,28 +151,28 @@ impl Projection {
     /// The corrected coordinates `(u', v')` at which the floor point
     /// `(x₀, y₀)` (robot frame) is seen; `None` behind the camera.
     #[must_use]
-    pub fn image(&self, x0: f64, y0: f64) -> Option<(f64, f64)> {
+    pub fn image(&self, x0: f64, y0: f64) -> Option<Point> {
         let ahead = y0 - self.y_cam;
         (ahead * self.big_y.signum() < 0.0).then(|| {
             let dv = -self.big_y / ahead;
-            (self.du - (x0 - self.x_cam) * dv / self.big_x, self.dv + dv)
+            Point::new(self.du - (x0 - self.x_cam) * dv / self.big_x, self.dv + dv)
         })
     }
 
     /// The world point of the robot-frame point `(x₀, y₀)` for a robot at
     /// `(x, y)` heading `ω`.
     #[must_use]
-    pub fn to_world(&self, robot: (f64, f64, f64), p: (f64, f64)) -> (f64, f64) {
-        let (s, c) = (self.alpha + robot.2).sin_cos();
-        (robot.0 + p.0 * c - p.1 * s, robot.1 + p.0 * s + p.1 * c)
+    pub fn to_world(&self, robot: Pose, p: Point) -> Point {
+        let (s, c) = (self.alpha + robot.theta).sin_cos();
+        Point::new(robot.x + p.x * c - p.y * s, robot.y + p.x * s + p.y * c)
     }
 
     /// The robot-frame point of the world point `q`.
     #[must_use]
-    pub fn to_robot(&self, robot: (f64, f64, f64), q: (f64, f64)) -> (f64, f64) {
-        let (s, c) = (self.alpha + robot.2).sin_cos();
-        let (dx, dy) = (q.0 - robot.0, q.1 - robot.1);
-        (dx * c + dy * s, -dx * s + dy * c)
+    pub fn to_robot(&self, robot: Pose, q: Point) -> Point {
+        let (s, c) = (self.alpha + robot.theta).sin_cos();
+        let (dx, dy) = (q.x - robot.x, q.y - robot.y);
+        Point::new(dx * c + dy * s, -dx * s + dy * c)
     }
 }
 
@@ -207,8 +208,9 @@ impl Camera {
     /// The world floor point seen at raw pixel `(u, v)` by a robot at
     /// `(x, y, ω)`; `None` on or above the horizon.
     #[must_use]
-    pub fn pixel_to_world(&self, robot: (f64, f64, f64), u: f64, v: f64) -> Option<(f64, f64)> {
-        let (up, vp) = self.distortion.undistort(u, v);
+    pub fn pixel_to_world(&self, robot: Pose, u: f64, v: f64) -> Option<Point> {
+        let q = self.distortion.undistort(u, v);
+        let (up, vp) = (q.x, q.y);
         let p = self.projection.floor(up, vp)?;
         Some(self.projection.to_world(robot, p))
     }
@@ -217,9 +219,10 @@ impl Camera {
     /// point `q`; `None` behind the camera or where the lens map does not
     /// invert.
     #[must_use]
-    pub fn world_to_pixel(&self, robot: (f64, f64, f64), q: (f64, f64)) -> Option<(f64, f64)> {
+    pub fn world_to_pixel(&self, robot: Pose, q: Point) -> Option<Point> {
         let p = self.projection.to_robot(robot, q);
-        let (up, vp) = self.projection.image(p.0, p.1)?;
+        let q = self.projection.image(p.x, p.y)?;
+        let (up, vp) = (q.x, q.y);
         self.distortion.distort(up, vp)
     }
 }
@@ -254,8 +257,14 @@ mod tests {
         let d = cam.distortion;
         for v in (0..240).step_by(7) {
             for u in (0..320).step_by(9) {
-                let (up, vp) = d.undistort(f64::from(u), f64::from(v));
-                let (ub, vb) = d.distort(up, vp).expect("invertible");
+                let (up, vp) = {
+                    let p = d.undistort(f64::from(u), f64::from(v));
+                    (p.x, p.y)
+                };
+                let (ub, vb) = {
+                    let p = d.distort(up, vp).expect("invertible");
+                    (p.x, p.y)
+                };
                 assert!((ub - f64::from(u)).abs() < 1e-6 && (vb - f64::from(v)).abs() < 1e-6);
             }
         }
@@ -274,33 +283,49 @@ mod tests {
         // the right of the camera is seen f·H/d = 66 px below the horizon
         // and f·x/d = 44 px right of the axis.
         let p = Projection::pinhole(220.0, 0.3, 0.0, 0.0, 0.0, 0.0);
-        let (up, vp) = p.image(0.2, 1.0).expect("ahead");
+        let (up, vp) = {
+            let p = p.image(0.2, 1.0).expect("ahead");
+            (p.x, p.y)
+        };
         assert!(
             (up - 44.0).abs() < 1e-12 && (vp - 66.0).abs() < 1e-12,
             "{up} {vp}"
         );
-        let (x0, y0) = p.floor(up, vp).expect("below the horizon");
+        let (x0, y0) = {
+            let p = p.floor(up, vp).expect("below the horizon");
+            (p.x, p.y)
+        };
         assert!((x0 - 0.2).abs() < 1e-12 && (y0 - 1.0).abs() < 1e-12);
         assert!(p.floor(10.0, -5.0).is_none(), "above the horizon");
         assert!(p.image(0.0, -1.0).is_none(), "behind");
         // In the world: a robot at (2, 1) heading +y sees "ahead" along +y
         // and "right" along +x.
-        let robot = (2.0, 1.0, std::f64::consts::FRAC_PI_2);
-        let (x, y) = p.to_world(robot, (0.2, 1.0));
+        let robot = Pose::new(2.0, 1.0, std::f64::consts::FRAC_PI_2);
+        let (x, y) = {
+            let p = p.to_world(robot, Point::new(0.2, 1.0));
+            (p.x, p.y)
+        };
         assert!(
             (x - 2.2).abs() < 1e-12 && (y - 2.0).abs() < 1e-12,
             "{x} {y}"
         );
-        let back = p.to_robot(robot, (x, y));
-        assert!((back.0 - 0.2).abs() < 1e-12 && (back.1 - 1.0).abs() < 1e-12);
+        let back = p.to_robot(robot, Point::new(x, y));
+        assert!((back.x - 0.2).abs() < 1e-12 && (back.y - 1.0).abs() < 1e-12);
         // Through the whole camera, with distortion and mounting offsets.
         let cam = camera();
-        let robot = (3.0, -1.0, 0.7);
-        for q in [(3.5, -0.2), (4.2, -1.3), (3.9, 0.1)] {
-            let (u, v) = cam.world_to_pixel(robot, q).expect("in view");
+        let robot = Pose::new(3.0, -1.0, 0.7);
+        for q in [
+            Point::new(3.5, -0.2),
+            Point::new(4.2, -1.3),
+            Point::new(3.9, 0.1),
+        ] {
+            let (u, v) = {
+                let p = cam.world_to_pixel(robot, q).expect("in view");
+                (p.x, p.y)
+            };
             let w = cam.pixel_to_world(robot, u, v).expect("on the floor");
             assert!(
-                (w.0 - q.0).abs() < 1e-9 && (w.1 - q.1).abs() < 1e-9,
+                (w.x - q.x).abs() < 1e-9 && (w.y - q.y).abs() < 1e-9,
                 "{q:?} {w:?}"
             );
         }

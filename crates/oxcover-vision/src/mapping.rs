@@ -190,18 +190,20 @@ pub fn on_floor(
     frame: &MapFrame,
     camera: &Camera,
     image: &RgbImage,
-    robot: (f64, f64, f64),
+    robot: Pose,
     range: f64,
 ) -> Grid<Option<[u8; 3]>> {
-    let eye = camera
-        .projection
-        .to_world(robot, (camera.projection.x_cam, camera.projection.y_cam));
+    let eye = camera.projection.to_world(
+        robot,
+        Point::new(camera.projection.x_cam, camera.projection.y_cam),
+    );
     Grid::from_fn(frame.width(), frame.height(), |c| {
         let q = frame.cell_center(c);
-        if (q.x - eye.0).hypot(q.y - eye.1) > range {
+        if (q.x - eye.x).hypot(q.y - eye.y) > range {
             return None;
         }
-        let (u, v) = camera.world_to_pixel(robot, (q.x, q.y))?;
+        let px = camera.world_to_pixel(robot, Point::new(q.x, q.y))?;
+        let (u, v) = (px.x, px.y);
         (u >= 0.0 && v >= 0.0 && u < f64::from(image.width) && v < f64::from(image.height))
             .then(|| image.rgb[(v as u32 * image.width + u as u32) as usize])
     })
@@ -215,7 +217,7 @@ pub fn readings(
     camera: &Camera,
     profile: &Profile,
     image: &RgbImage,
-    robot: (f64, f64, f64),
+    robot: Pose,
     range: f64,
 ) -> Grid<f64> {
     let colours = on_floor(frame, camera, image, robot, range);
@@ -248,12 +250,12 @@ pub fn fuse(
     config: &MappingConfig,
 ) {
     let frame = *grid.frame();
-    let robot = (robot.x, robot.y, robot.theta);
     let seen = readings(&frame, camera, profile, image, robot, config.range);
-    let eye = camera
-        .projection
-        .to_world(robot, (camera.projection.x_cam, camera.projection.y_cam));
-    let acc = accumulated(&seen, &frame, Point::new(eye.0, eye.1), config.visibility);
+    let eye = camera.projection.to_world(
+        robot,
+        Point::new(camera.projection.x_cam, camera.projection.y_cam),
+    );
+    let acc = accumulated(&seen, &frame, Point::new(eye.x, eye.y), config.visibility);
     for c in acc.cells() {
         let (p, v) = (seen[c], acc[c]);
         if p.is_nan() || v.is_nan() {
@@ -429,7 +431,7 @@ mod tests {
         let rendered: Vec<Rendered> = poses
             .iter()
             .enumerate()
-            .map(|(k, &p)| scene.render(&cam, p, &light, k as u64))
+            .map(|(k, &(x, y, t))| scene.render(&cam, Pose::new(x, y, t), &light, k as u64))
             .collect();
         let mut profile = Profile::new(20).unwrap();
         learn_profile(&mut profile, &rendered[..6]);

@@ -13,7 +13,7 @@
 //! down (or a grey background beyond `max_range`). Lighting scales and tints
 //! the whole image; seeded Gaussian noise is added per channel.
 
-use oxcover_grid::{Cell, Grid, OccupancyGrid};
+use oxcover_grid::{Cell, Grid, OccupancyGrid, Point, Pose};
 use serde::{Deserialize, Serialize};
 
 use crate::camera::Camera;
@@ -90,34 +90,29 @@ impl SyntheticScene<'_> {
     /// Renders what `camera` sees from `robot = (x, y, ω)`; `seed` drives
     /// the noise.
     #[must_use]
-    pub fn render(
-        &self,
-        camera: &Camera,
-        robot: (f64, f64, f64),
-        light: &Lighting,
-        seed: u64,
-    ) -> Rendered {
+    pub fn render(&self, camera: &Camera, robot: Pose, light: &Lighting, seed: u64) -> Rendered {
         let p = camera.projection;
         let h = -p.big_x;
         let f = p.big_y / p.big_x;
         let frame = self.map.frame();
         let step = frame.resolution() / 4.0;
-        let origin = p.to_world(robot, (p.x_cam, p.y_cam));
+        let origin = p.to_world(robot, Point::new(p.x_cam, p.y_cam));
         let mut rng = SplitMix(seed);
         let (w, ht) = (camera.width, camera.height);
         let mut rgb = Vec::with_capacity((w * ht) as usize);
         let mut truth = Vec::with_capacity((w * ht) as usize);
         for v in 0..ht {
             for u in 0..w {
-                let (up, vp) = camera
+                let q = camera
                     .distortion
                     .undistort(f64::from(u) + 0.5, f64::from(v) + 0.5);
+                let (up, vp) = (q.x, q.y);
                 // The ray per metre ahead: lateral and down.
                 let (lat, down) = ((up - p.du) / f, (vp - p.dv) / f);
                 let ground = if down > 0.0 { h / down } else { f64::INFINITY };
                 // Its direction on the floor, in the world.
-                let ahead = p.to_world(robot, (p.x_cam + lat, p.y_cam + 1.0));
-                let (dx, dy) = (ahead.0 - origin.0, ahead.1 - origin.1);
+                let ahead = p.to_world(robot, Point::new(p.x_cam + lat, p.y_cam + 1.0));
+                let (dx, dy) = (ahead.x - origin.x, ahead.y - origin.y);
                 let norm = dx.hypot(dy);
                 let limit = ground.min(self.max_range);
                 let dt = step / norm.max(1e-9);
@@ -125,7 +120,7 @@ impl SyntheticScene<'_> {
                 let mut seen = Seen::Background;
                 loop {
                     let tt = t.min(limit);
-                    let q = oxcover_grid::Point::new(origin.0 + dx * tt, origin.1 + dy * tt);
+                    let q = oxcover_grid::Point::new(origin.x + dx * tt, origin.y + dy * tt);
                     let Some(c) = frame.cell_at(&q) else {
                         break;
                     };
@@ -232,7 +227,7 @@ mod tests {
             projection: Projection::pinhole(110.0, 0.3, 0.0, -5.0, 0.0, 0.0),
         };
         // Robot at (1, 0.55) heading +x: the wall is 3 m ahead.
-        let robot = (1.0, 0.55, 0.0);
+        let robot = Pose::new(1.0, 0.55, 0.0);
         let img = scene.render(&cam, robot, &Lighting::default(), 1);
         assert_eq!(img.rgb.len(), 160 * 120);
         // Every floor pixel's cell is where the camera model puts its centre.
@@ -244,14 +239,17 @@ mod tests {
                     let w = cam
                         .pixel_to_world(robot, f64::from(u) + 0.5, f64::from(v) + 0.5)
                         .expect("below the horizon");
-                    let q = map.frame().cell_at(&oxcover_grid::Point::new(w.0, w.1));
+                    let q = map.frame().cell_at(&oxcover_grid::Point::new(w.x, w.y));
                     assert_eq!(q, Some(c), "pixel {u},{v}");
                 }
             }
         }
         assert!(floors > 3000, "{floors}");
         // Straight ahead at the horizon row: the wall, coloured as given.
-        let (u, v) = cam.world_to_pixel(robot, (3.5, 0.55)).unwrap();
+        let (u, v) = {
+            let p = cam.world_to_pixel(robot, Point::new(3.5, 0.55)).unwrap();
+            (p.x, p.y)
+        };
         assert!(matches!(
             img.truth[(v as u32 * 160 + u as u32) as usize],
             Seen::Floor(_)

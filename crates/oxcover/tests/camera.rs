@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use oxcover_grid::{Grid, Occupancy, OccupancyGrid, Point};
+use oxcover_grid::{Grid, Occupancy, OccupancyGrid, Point, Pose};
 use oxcover_vision::synthetic::{Lighting, SyntheticScene};
 use oxcover_vision::{Camera, Distortion, Profile, Projection, RgbImage, learn_profile};
 
@@ -59,10 +59,10 @@ fn write_inputs(dir: &Path) -> OccupancyGrid {
         tint: [1.0; 3],
         noise: 2.0,
     };
-    let poses: Vec<(f64, f64, f64)> = (0..16)
+    let poses: Vec<Pose> = (0..16)
         .map(|k| {
             let a = f64::from(k) * std::f64::consts::TAU / 16.0;
-            (2.5 + 1.5 * a.cos(), 2.0 + 1.1 * a.sin(), a + 1.9)
+            Pose::new(2.5 + 1.5 * a.cos(), 2.0 + 1.1 * a.sin(), a + 1.9)
         })
         .collect();
     let images: Vec<_> = poses
@@ -84,7 +84,7 @@ fn write_inputs(dir: &Path) -> OccupancyGrid {
         RgbImage::from(img)
             .write_png(&dir.join(&name))
             .expect("png");
-        csv += &format!("{name},{},{},{}\n", p.0, p.1, p.2);
+        csv += &format!("{name},{},{},{}\n", p.x, p.y, p.theta);
     }
     std::fs::write(dir.join("poses.csv"), csv).expect("write");
     truth

@@ -73,7 +73,7 @@ pub fn calibrate(truth: &Camera) -> anyhow::Result<Calibrated> {
     let mut noise = SplitMix(2002);
     let d = truth.distortion;
     // A chequerboard's edges: 5 rows and 6 columns of lines, and a diagonal.
-    let mut lines: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut lines: Vec<Vec<Point>> = Vec::new();
     let mut specs: Vec<((f64, f64), f64)> = Vec::new();
     for k in 0..5 {
         specs.push(((0.0, 1.0), -70.0 + 35.0 * f64::from(k)));
@@ -83,16 +83,19 @@ pub fn calibrate(truth: &Camera) -> anyhow::Result<Calibrated> {
     }
     specs.push(((0.6, 0.8), 15.0));
     for ((nx, ny), c) in specs {
-        let line: Vec<(f64, f64)> = (-12..=12)
+        let line: Vec<Point> = (-12..=12)
             .filter_map(|t| {
                 let t = f64::from(t) * 11.0;
                 let (up, vp) = (c * nx - t * ny, c * ny + t * nx);
-                let (u, v) = d.distort(up, vp)?;
+                let (u, v) = {
+                    let p = d.distort(up, vp)?;
+                    (p.x, p.y)
+                };
                 let (u, v) = (
                     u + CALIBRATION_NOISE.0 * noise.normal(),
                     v + CALIBRATION_NOISE.0 * noise.normal(),
                 );
-                (u >= 0.0 && v >= 0.0 && u < 240.0 && v < 180.0).then_some((u, v))
+                (u >= 0.0 && v >= 0.0 && u < 240.0 && v < 180.0).then_some(Point::new(u, v))
             })
             .collect();
         lines.push(line);
@@ -104,18 +107,24 @@ pub fn calibrate(truth: &Camera) -> anyhow::Result<Calibrated> {
     };
     let dist = calibrate_distortion(&lines, truth.width, truth.height, guess_d)?;
     // Eleven box placements, four corners each, from three robot poses.
-    let poses = [(0.0, 0.0, 0.0), (1.5, 0.5, 0.5), (-0.5, 2.0, -0.4)];
+    let poses = [
+        Pose::new(0.0, 0.0, 0.0),
+        Pose::new(1.5, 0.5, 0.5),
+        Pose::new(-0.5, 2.0, -0.4),
+    ];
     let mut pairs = Vec::new();
     for i in 0..11 {
         let robot = poses[i % 3];
         let (side, ahead) = (-0.4 + 0.08 * i as f64, 0.7 + 0.18 * i as f64);
         for (dx, dy) in [(0.0, 0.0), (0.4, 0.0), (0.0, 0.3), (0.4, 0.3)] {
-            let world = truth.projection.to_world(robot, (side + dx, ahead + dy));
+            let world = truth
+                .projection
+                .to_world(robot, Point::new(side + dx, ahead + dy));
             if let Some(px) = truth.world_to_pixel(robot, world) {
                 pairs.push(FloorPair {
-                    pixel: (
-                        px.0 + CALIBRATION_NOISE.1 * noise.normal(),
-                        px.1 + CALIBRATION_NOISE.1 * noise.normal(),
+                    pixel: Point::new(
+                        px.x + CALIBRATION_NOISE.1 * noise.normal(),
+                        px.y + CALIBRATION_NOISE.1 * noise.normal(),
                     ),
                     robot,
                     floor: world,
@@ -222,10 +231,10 @@ pub fn learn(truth: &Camera) -> anyhow::Result<Profile> {
         background: [128, 128, 128],
         max_range: 8.0,
     };
-    let poses: Vec<(f64, f64, f64)> = (0..8)
+    let poses: Vec<Pose> = (0..8)
         .map(|k| {
             let a = f64::from(k) * std::f64::consts::TAU / 8.0;
-            (2.5 + 1.3 * a.cos(), 2.0 + 0.9 * a.sin(), a + 2.2)
+            Pose::new(2.5 + 1.3 * a.cos(), 2.0 + 0.9 * a.sin(), a + 2.2)
         })
         .collect();
     // Each view of a condition varies its gain by up to ±8 % (a light
@@ -253,7 +262,7 @@ pub fn learn(truth: &Camera) -> anyhow::Result<Profile> {
 
 /// The drive: a lawnmower path through the office's free space, a pose
 /// every `spacing` m, heading along the path.
-fn drive(map: &OccupancyGrid, spacing: f64) -> anyhow::Result<Vec<(f64, f64, f64)>> {
+fn drive(map: &OccupancyGrid, spacing: f64) -> anyhow::Result<Vec<Pose>> {
     let sweep = planner("boustrophedon", &PlannerOptions::new().sweep_angle(0.0))?;
     let req = PlanRequest::with_planner(sweep, map.resolution())
         .robot(DiscRobot::new(0.25, 0.4)?)
@@ -271,7 +280,7 @@ fn drive(map: &OccupancyGrid, spacing: f64) -> anyhow::Result<Vec<(f64, f64, f64
         let mut t = carry;
         while t < len {
             let p = a + (b - a) * (t / len);
-            poses.push((p.x, p.y, heading));
+            poses.push(Pose::new(p.x, p.y, heading));
             t += spacing;
         }
         carry = t - len;
@@ -344,8 +353,8 @@ pub fn run() -> anyhow::Result<()> {
             ..MappingConfig::default()
         };
         let mut mapper = Mapper::new(&cal.camera, &profile, *truth.frame(), config)?;
-        for (img, &(x, y, theta)) in images.iter().zip(&poses) {
-            mapper.add(&RgbImage::from(img), Pose::new(x, y, theta))?;
+        for (img, &pose) in images.iter().zip(&poses) {
+            mapper.add(&RgbImage::from(img), pose)?;
         }
         let map = mapper.map();
         let seen = score(&map, &truth, Some(&region));
@@ -433,7 +442,7 @@ fn floor_picture(
     truth: &OccupancyGrid,
     cam: &Camera,
     img: &RgbImage,
-    robot: (f64, f64, f64),
+    robot: Pose,
     range: f64,
     file: &Path,
 ) -> anyhow::Result<()> {
