@@ -96,10 +96,17 @@ mod tests {
     use super::*;
     use crate::control::{Kanayama, Klancar};
     use crate::timing::Limits;
+    use oxcover_grid::Point;
 
     #[test]
     fn a_timed_square_is_tracked_closely() {
-        let square = [(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (0.0, 2.0), (0.0, 0.0)];
+        let square = [
+            Point::new(0.0, 0.0),
+            Point::new(2.0, 0.0),
+            Point::new(2.0, 2.0),
+            Point::new(0.0, 2.0),
+            Point::new(0.0, 0.0),
+        ];
         let timing = Timing::new(&square, Limits::default()).unwrap();
         let robot = DiffDrive::default();
         for c in [
@@ -136,7 +143,11 @@ mod tests {
 
     #[test]
     fn bad_steps_are_refused() {
-        let timing = Timing::new(&[(0.0, 0.0), (1.0, 0.0)], Limits::default()).unwrap();
+        let timing = Timing::new(
+            &[Point::new(0.0, 0.0), Point::new(1.0, 0.0)],
+            Limits::default(),
+        )
+        .unwrap();
         let robot = DiffDrive::default();
         let c = Klancar::default();
         assert!(simulate(&timing, &c, &robot, Pose::default(), 0.0, 1.0).is_err());

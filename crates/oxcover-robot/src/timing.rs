@@ -23,6 +23,7 @@
 use crate::control::Reference;
 use crate::error::{Result, positive};
 use crate::kinematics::Pose;
+use oxcover_grid::Point;
 use oxcover_grid::math::wrap_angle;
 
 /// Distance (m) over which the reference heading eases through a gentle
@@ -149,10 +150,11 @@ impl Timing {
     ///
     /// # Errors
     /// Bad limits ([`crate::Error::BadParameter`]).
-    pub fn new(points: &[(f64, f64)], limits: Limits) -> Result<Self> {
+    pub fn new(points: &[Point], limits: Limits) -> Result<Self> {
+        let points: Vec<(f64, f64)> = points.iter().map(|p| (p.x, p.y)).collect();
         let limits = limits.validated()?;
         let mut pts: Vec<(f64, f64)> = Vec::with_capacity(points.len());
-        for &p in points {
+        for &p in &points {
             if p.0.is_finite()
                 && p.1.is_finite()
                 && pts
@@ -379,21 +381,27 @@ mod tests {
         let l = Limits::default();
         // 3 m at 0.3 m/s with 0.5 m/s²: accelerate 0.6 s over 0.09 m, cruise,
         // brake 0.6 s: total 3/0.3 + 0.3/0.5 = 10.6 s.
-        let t = Timing::new(&[(0.0, 0.0), (3.0, 0.0)], l).unwrap();
+        let t = Timing::new(&[Point::new(0.0, 0.0), Point::new(3.0, 0.0)], l).unwrap();
         assert!((t.duration() - 10.6).abs() < 1e-9, "{}", t.duration());
         let mid = t.at(5.3);
         assert!((mid.pose.x - 1.5).abs() < 1e-9 && (mid.v - 0.3).abs() < 1e-12);
         assert_eq!(t.at(0.0).v, 0.0);
         assert!((t.at(100.0).pose.x - 3.0).abs() < 1e-12 && t.at(100.0).v == 0.0);
         // Too short to reach top speed: a triangle, 2·sqrt(l/a).
-        let t = Timing::new(&[(0.0, 0.0), (0.02, 0.0)], l).unwrap();
+        let t = Timing::new(&[Point::new(0.0, 0.0), Point::new(0.02, 0.0)], l).unwrap();
         assert!((t.duration() - 2.0 * (0.02f64 / 0.5).sqrt()).abs() < 1e-9);
     }
 
     #[test]
     fn corners_stop_and_turn_in_place() {
         let l = Limits::default();
-        let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.0, 0.0)];
+        let square = [
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(1.0, 1.0),
+            Point::new(0.0, 1.0),
+            Point::new(0.0, 0.0),
+        ];
         let t = Timing::new(&square, l).unwrap();
         let side = 1.0 / 0.3 + 0.3 / 0.5;
         // Each turn: π/2 at 0.52 rad/s plus one ramp of 0.52/3 s.
@@ -418,7 +426,15 @@ mod tests {
             ..Limits::default()
         };
         // A half turn: ramps of 0.5 s at 3 rad/s², then 1.5 rad/s.
-        let t = Timing::new(&[(0.0, 0.0), (1.0, 0.0), (0.0, 0.0)], l).unwrap();
+        let t = Timing::new(
+            &[
+                Point::new(0.0, 0.0),
+                Point::new(1.0, 0.0),
+                Point::new(0.0, 0.0),
+            ],
+            l,
+        )
+        .unwrap();
         let side = 1.0 / 0.3 + 0.3 / 0.5;
         let dur = PI / 1.5 + 0.5;
         assert!((t.duration() - (2.0 * side + dur)).abs() < 1e-9);
@@ -439,10 +455,10 @@ mod tests {
     #[test]
     fn smooth_curves_are_driven_at_the_speed_their_curvature_allows() {
         // A circle of radius 0.25 m in 200 steps: ω_max·R = 0.13 m/s < v_max.
-        let pts: Vec<(f64, f64)> = (0..=200)
+        let pts: Vec<Point> = (0..=200)
             .map(|k| {
                 let a = k as f64 / 200.0 * 2.0 * PI;
-                (0.25 * a.sin(), 0.25 - 0.25 * a.cos())
+                Point::new(0.25 * a.sin(), 0.25 - 0.25 * a.cos())
             })
             .collect();
         let t = Timing::new(&pts, Limits::default()).unwrap();
@@ -475,12 +491,12 @@ mod tests {
     #[test]
     fn positions_are_continuous_and_limits_hold() {
         let pts = [
-            (0.0, 0.0),
-            (1.0, 0.1),
-            (1.2, 0.9),
-            (0.4, 1.3),
-            (0.5, 1.31),
-            (2.0, 2.0),
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.1),
+            Point::new(1.2, 0.9),
+            Point::new(0.4, 1.3),
+            Point::new(0.5, 1.31),
+            Point::new(2.0, 2.0),
         ];
         let t = Timing::new(&pts, Limits::default()).unwrap();
         let n = 5000;

@@ -160,8 +160,7 @@ pub fn execute(
             "a relative wheel-speed error in [0, 0.5)",
         ));
     }
-    let xy: Vec<(f64, f64)> = points.iter().map(|p| (p.x, p.y)).collect();
-    let timing = Timing::new(&xy, cfg.limits).map_err(|e| Error::BadParameter {
+    let timing = Timing::new(points, cfg.limits).map_err(|e| Error::BadParameter {
         name: "limits",
         value: format!("{:?}", cfg.limits),
         expected: e.to_string(),
