@@ -356,3 +356,46 @@ fn papers_are_named_by_author_and_year() {
         );
     }
 }
+
+/// Coordinates in public signatures are `Point`, `Vector` or `Pose`
+/// (`oxcover_grid::math`), never bare tuples. The pairs allowed are not
+/// coordinates: (v, ω) commands and wheel speeds, PID gains, y and size
+/// ranges, HSV colours, a cost before and after.
+#[test]
+fn no_tuple_coordinates_in_public_signatures() {
+    let allowed = [
+        "fn wheel_speeds",
+        "fn from_wheels",
+        "fn wheel_rates",
+        "fn saturate",
+        "pub pso_cost",
+        "pub size",
+        "pub x: (f64, f64)",
+        "pub span",
+        "pub gains",
+        "fn wall(",
+        "fn command(",
+        "fn hsv(",
+        "fn index(",
+    ];
+    let mut files = Vec::new();
+    rust_files(&root().join("crates"), &mut files);
+    for f in files {
+        let s = f.to_string_lossy().replace('\\', "/");
+        if s.contains("/tests/") || s.contains("/benches/") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&f).expect("readable source");
+        let code = text.split("#[cfg(test)]").next().unwrap_or("");
+        for line in code.lines().map(str::trim) {
+            let public =
+                line.starts_with("pub fn") || (line.starts_with("pub ") && line.contains(": "));
+            if public
+                && (line.contains("(f64, f64)") || line.contains("(f64, f64, f64)"))
+                && !allowed.iter().any(|a| line.contains(a))
+            {
+                panic!("{}: `{line}`: use Point, Vector or Pose", f.display());
+            }
+        }
+    }
+}
