@@ -69,6 +69,7 @@ pub use boundary_pass::{BoundaryRoute, boundary_pass};
 pub use error::{Error, Result};
 pub use planner::{Planner, PlannerOptions, steps};
 pub use problem::{
-    CoverageProblem, PlanOutput, PlannerInput, Start, coarse_block, largest_region_start,
+    CoverageProblem, PlanOutput, PlannerInput, Start, coarse_block, largest_region_cell,
+    largest_region_start,
 };
 pub use registry::{build, find, registry};

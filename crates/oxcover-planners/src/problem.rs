@@ -59,10 +59,16 @@ impl From<Option<Point>> for Start {
 /// region for a robot of `robot_radius`, if any cell is admissible.
 #[must_use]
 pub fn largest_region_start(map: &OccupancyGrid, robot_radius: f64) -> Option<Cell> {
-    let adm = admissible(map, robot_radius);
-    let comps = components4(&adm);
+    largest_region_cell(&admissible(map, robot_radius))
+}
+
+/// The first set cell (row-major) of the largest 4-connected region of
+/// `mask` (ties: the region met first), if any cell is set.
+#[must_use]
+pub fn largest_region_cell(mask: &Grid<bool>) -> Option<Cell> {
+    let comps = components4(mask);
     let big = comps.largest()?;
-    adm.true_cells().find(|&c| comps.labels[c] == big)
+    mask.true_cells().find(|&c| comps.labels[c] == big)
 }
 
 /// Coverage-cell side in fine cells for a tool radius: one tool diameter,

@@ -19,7 +19,8 @@ use std::time::Instant;
 
 use oxcover_grid::{Cell, Coverability, DiscRobot, OccupancyGrid, Point, components4};
 use oxcover_planners::{
-    BoundaryRoute, CoverageProblem, PlanOutput, Planner, PlannerOptions, Start, registry,
+    BoundaryRoute, CoverageProblem, PlanOutput, Planner, PlannerOptions, Start,
+    largest_region_cell, registry,
 };
 use serde::Serialize;
 
@@ -396,11 +397,7 @@ pub fn coverage_notes(
             comps.sizes[big as usize - 1],
         );
         if big != mine && theirs > 2 * ours {
-            if let Some(cell) = problem
-                .admissible
-                .true_cells()
-                .find(|&c| comps.labels[c] == big)
-            {
+            if let Some(cell) = largest_region_cell(&problem.admissible) {
                 let p = map.frame().cell_center(cell);
                 let how = if default_start {
                     "the default start (first admissible cell)"
