@@ -55,6 +55,7 @@ pub fn point(x: Real, y: Real) -> Point {
 /// `√(x² + y²)`, without `hypot`'s care for overflow (for hot paths on
 /// coordinates that are metres or cells, far from overflow).
 #[must_use]
+#[inline]
 pub fn norm(x: Real, y: Real) -> Real {
     (x * x + y * y).sqrt()
 }

@@ -18,12 +18,14 @@ pub type GridPoint = Point;
 
 /// The grid coordinates of `cell`'s centre.
 #[must_use]
+#[inline]
 pub fn cell_center(cell: Cell) -> GridPoint {
     Point::new(cell.col as f64 + 0.5, cell.row as f64 + 0.5)
 }
 
 /// The cell containing `p`, if inside the grid.
 #[must_use]
+#[inline]
 pub fn cell_of<T>(grid: &Grid<T>, p: GridPoint) -> Option<Cell> {
     let (x, y) = (p.x, p.y);
     if !(x.is_finite() && y.is_finite()) || x < 0.0 || y < 0.0 {
@@ -35,6 +37,7 @@ pub fn cell_of<T>(grid: &Grid<T>, p: GridPoint) -> Option<Cell> {
 
 /// Distance from `m` to the segment `a b` (to `a` when the segment is a point).
 #[must_use]
+#[inline]
 pub fn segment_distance(a: GridPoint, b: GridPoint, m: GridPoint) -> f64 {
     let (dx, dy) = (b.x - a.x, b.y - a.y);
     let len2 = dx * dx + dy * dy;

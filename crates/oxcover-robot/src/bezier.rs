@@ -54,8 +54,17 @@ impl QuinticBezier {
     }
 
     /// The control points as vectors.
+    #[inline]
     fn coords(&self) -> [Vec2; 6] {
-        self.control.map(|p| p.coords)
+        let c = &self.control;
+        [
+            c[0].coords,
+            c[1].coords,
+            c[2].coords,
+            c[3].coords,
+            c[4].coords,
+            c[5].coords,
+        ]
     }
 
     /// de Casteljau evaluation of the control polygon `c` at `u`.
