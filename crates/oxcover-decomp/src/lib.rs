@@ -14,6 +14,9 @@
 //!   events) and [`trapezoidal`](mod@trapezoidal) (also cut where a side bends).
 //! - [`border_expansion`](mod@border_expansion): Pavlíček 2002's roads, the boundaries of successive
 //!   offsets of the obstacles, with safety levels and the road graph.
+//! - [`rooms`]: room segmentation of indoor maps by morphology (erode until
+//!   the free space splits into room-sized seeds, grow them back), with the
+//!   doors between rooms.
 //!
 //! ```
 //! use oxcover_decomp::QuadTree;
@@ -31,6 +34,7 @@ pub mod border_expansion;
 pub mod boustrophedon;
 pub mod quadtree;
 pub mod rectangular;
+pub mod rooms;
 pub mod slices;
 pub mod trapezoidal;
 
@@ -38,5 +42,6 @@ pub use border_expansion::{BorderExpansion, Road, border_expansion};
 pub use boustrophedon::boustrophedon;
 pub use quadtree::{Block, BlockChanges, QuadTree};
 pub use rectangular::{Rectangle, RectangularDecomposition, dir8_bit};
+pub use rooms::{Door, RoomParams, Rooms, morphological};
 pub use slices::{Interval, Lane, SliceDecomposition, Slices};
 pub use trapezoidal::trapezoidal;
