@@ -21,6 +21,8 @@
 //! - [`render`]: SVG and PNG pictures with a metrics legend, and overlays
 //!   (coloured strokes, lines, markers) for states and graphs.
 //! - [`report`]: the JSON report of `plan --report`.
+//! - [`rooms`]: rooms of a map in metres, as JSON and as a picture
+//!   (`oxcover segment`).
 //!
 //! The command line (`oxcover`, including `map-from-camera` on
 //! [`oxcover_vision`]) is the binary's own and uses only this API.
@@ -52,6 +54,7 @@ pub mod path;
 pub mod pipeline;
 pub mod render;
 pub mod report;
+pub mod rooms;
 
 pub use error::{Error, Result};
 pub use metrics::{Evaluation, MetricParams, Metrics, evaluate};

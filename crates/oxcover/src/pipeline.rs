@@ -356,6 +356,7 @@ pub fn write_outputs(
         coverable: Some(&ev.problem.coverable),
         title,
         overlay: None,
+        regions: None,
         rows: metric_rows(&ev.metrics),
     };
     for p in [out.svg, out.png].into_iter().flatten() {

@@ -231,6 +231,25 @@ fn bad_inputs_exit_2_with_one_line() {
             "--tool-radius is `0`",
         ),
         (
+            vec!["segment", &good_yaml, "--min-area", "-1"],
+            "--min-area is `-1`",
+        ),
+        (
+            vec![
+                "segment",
+                &good_yaml,
+                "--min-area",
+                "50",
+                "--max-area",
+                "10",
+            ],
+            "expected at most --max-area",
+        ),
+        (
+            vec!["segment", &good_yaml, "--out", "rooms.txt"],
+            "--out is `rooms.txt`, expected a file name ending in .json",
+        ),
+        (
             vec![
                 "plan",
                 &good_yaml,

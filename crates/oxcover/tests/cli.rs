@@ -177,6 +177,45 @@ fn start_is_honoured_and_pictures_are_written() {
 }
 
 #[test]
+fn segment_finds_the_rooms_of_the_demo_flat() {
+    let dir = scratch("segment");
+    let (json_f, png) = (dir.join("rooms.json"), dir.join("rooms.png"));
+    let (out, _) = run(&[
+        "segment",
+        &fixture("turtlebot_simulator/simple_rooms.yaml"),
+        "--out",
+        json_f.to_str().unwrap(),
+        "--png",
+        png.to_str().unwrap(),
+    ]);
+    assert!(out.contains("7 rooms"), "{out}");
+    let r = json(&std::fs::read_to_string(&json_f).unwrap());
+    assert_eq!(r["seeded"], 7);
+    assert_eq!(r["doors"].as_array().map(Vec::len), Some(6));
+    // Six rooms of about 28 m² round a hall; every door joins the hall.
+    let rooms = r["rooms"].as_array().unwrap();
+    let hall = rooms
+        .iter()
+        .max_by(|a, b| {
+            a["area_m2"]
+                .as_f64()
+                .unwrap()
+                .total_cmp(&b["area_m2"].as_f64().unwrap())
+        })
+        .unwrap()["label"]
+        .as_u64()
+        .unwrap();
+    for d in r["doors"].as_array().unwrap() {
+        let pair = [
+            d["rooms"][0].as_u64().unwrap(),
+            d["rooms"][1].as_u64().unwrap(),
+        ];
+        assert!(pair.contains(&hall), "{d}");
+    }
+    assert!(std::fs::metadata(&png).unwrap().len() > 1000);
+}
+
+#[test]
 fn info_planners_and_demo() {
     let (info, _) = run(&["info", &fixture("nobleo/basement.yaml")]);
     assert!(

@@ -145,6 +145,7 @@ fn figure(m: &Measured, file: &std::path::Path) -> anyhow::Result<()> {
             coverable: Some(&o.evaluation.problem.coverable),
             title: format!("{} - sensor-bcd", m.world.name),
             overlay: Some(&overlay),
+            regions: None,
             rows,
         },
         file,

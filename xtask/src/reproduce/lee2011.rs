@@ -337,6 +337,7 @@ fn figure(
             coverable: Some(&run.evaluation.problem.coverable),
             title: format!("{env} - {planner} executed (plan in orange)"),
             overlay: None,
+            regions: None,
             rows,
         },
         &out.join(format!("lee2011_{env}_{planner}.png")),

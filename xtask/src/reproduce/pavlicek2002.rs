@@ -114,6 +114,7 @@ fn plan_png(
             coverable: Some(&o.evaluation.problem.coverable),
             title: title.to_string(),
             overlay: None,
+            regions: None,
             rows: metric_rows(&o.evaluation.metrics),
         },
         file,

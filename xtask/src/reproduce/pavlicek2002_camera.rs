@@ -429,6 +429,7 @@ fn picture(map: &OccupancyGrid, title: &str, file: &Path) -> anyhow::Result<()> 
             coverable: None,
             title: title.to_string(),
             overlay: None,
+            regions: None,
             rows: Vec::new(),
         },
         file,

@@ -119,6 +119,7 @@ pub fn run() -> anyhow::Result<()> {
                 coverable: Some(&r.evaluation.problem.coverable),
                 title: format!("Grid_Cover path (orange), {} (blue)", RUNS[i].0),
                 overlay: None,
+                regions: None,
                 rows: vec![
                     (
                         "RMS error cm".into(),

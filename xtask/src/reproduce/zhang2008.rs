@@ -231,6 +231,7 @@ pub fn run() -> anyhow::Result<()> {
             coverable: Some(&o.evaluation.problem.coverable),
             title: "simple_rooms - rect-priority (no boundary pass)".into(),
             overlay: None,
+            regions: None,
             rows: metric_rows(&o.evaluation.metrics),
         };
         std::fs::write(out.join("zhang2008_simple_rooms.svg"), render_svg(&scene)?)?;

@@ -141,6 +141,7 @@ pub(crate) fn cmd_explore(a: &ExploreArgs) -> Result<()> {
         coverable: Some(&outcome.evaluation.problem.coverable),
         title: format!("{} - sensor-bcd", world.name),
         overlay: Some(&overlay),
+        regions: None,
         rows: rows.clone(),
     };
     for f in [a.svg.as_deref(), a.png.as_deref()].into_iter().flatten() {

@@ -16,6 +16,7 @@ mod explore;
 mod info;
 mod plan;
 mod render;
+mod segment;
 mod simulate;
 
 use std::io::Write as _;
@@ -29,6 +30,7 @@ use explore::ExploreArgs;
 use info::InfoArgs;
 use plan::PlanArgs;
 use render::RenderArgs;
+use segment::SegmentArgs;
 use simulate::SimulateArgs;
 
 #[derive(Debug, Parser)]
@@ -67,6 +69,10 @@ enum Command {
     /// camera and HSV profile (RON), PNG images with robot poses (CSV
     /// image,x,y,theta), written as a ROS map that `plan` reads.
     MapFromCamera(MapFromCameraArgs),
+    /// Segment a map into rooms: room labels, the doors between rooms, a
+    /// picture with one colour per room, JSON with room areas and door
+    /// positions in metres.
+    Segment(SegmentArgs),
     /// Plan, then execute the plan with a simulated differential-drive robot
     /// (time law, tracking controller, wheel limits, odometry noise) and score
     /// the EXECUTED trajectory.
@@ -105,6 +111,7 @@ where
             Ok(())
         }
         Some(Command::Simulate(a)) => simulate::cmd_simulate(&a),
+        Some(Command::Segment(a)) => segment::cmd_segment(&a),
         Some(Command::Explore(a)) => explore::cmd_explore(&a),
         Some(Command::MapFromCamera(a)) => camera::cmd_map_from_camera(&a),
     };

@@ -41,6 +41,7 @@ pub(crate) fn cmd_render(a: &RenderArgs) -> Result<()> {
                 coverable: Some(&ev.problem.coverable),
                 title: format!("{name} - {}", short_name(&path_file.display().to_string())),
                 overlay: None,
+                regions: None,
                 rows: metric_rows(&ev.metrics),
             };
             render_to_file(&scene, &a.out)?;

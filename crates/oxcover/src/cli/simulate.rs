@@ -108,6 +108,7 @@ pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
             p.planner
         ),
         overlay: None,
+        regions: None,
         rows: rows.clone(),
     };
     for f in [p.svg.as_deref(), p.png.as_deref()].into_iter().flatten() {

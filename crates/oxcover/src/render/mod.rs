@@ -55,6 +55,8 @@ pub struct Scene<'a> {
     /// with their own legend entries (e.g. the sensor-based planner's
     /// states, critical points and graph).
     pub overlay: Option<&'a Overlay>,
+    /// Free cells coloured by region label (e.g. rooms; 0 = not coloured).
+    pub regions: Option<&'a Grid<u32>>,
 }
 
 impl<'a> Scene<'a> {
@@ -70,6 +72,7 @@ impl<'a> Scene<'a> {
             title,
             rows,
             overlay: None,
+            regions: None,
         }
     }
 }
@@ -233,6 +236,27 @@ impl Layout {
     }
 }
 
+/// A light colour for region `label` (neighbouring labels differ in hue).
+#[must_use]
+pub fn region_rgb(label: u32) -> [u8; 3] {
+    // Hues a golden angle apart, pale enough to keep the path readable.
+    let hue = (f64::from(label) * 137.507_764) % 360.0;
+    let (s, v) = (0.35, 0.95);
+    let c = v * s;
+    let x = c * (1.0 - ((hue / 60.0) % 2.0 - 1.0).abs());
+    let (r, g, b) = match (hue / 60.0) as u32 {
+        0 => (c, x, 0.0),
+        1 => (x, c, 0.0),
+        2 => (0.0, c, x),
+        3 => (0.0, x, c),
+        4 => (x, 0.0, c),
+        _ => (c, 0.0, x),
+    };
+    let m = v - c;
+    let byte = |t: f64| ((t + m) * 255.0).round() as u8;
+    [byte(r), byte(g), byte(b)]
+}
+
 /// The map drawing as RGB pixels, `map_w × map_h`.
 pub(crate) fn map_raster(scene: &Scene<'_>, layout: &Layout) -> Vec<[u8; 3]> {
     let map = scene.map;
@@ -266,7 +290,14 @@ pub(crate) fn map_raster(scene: &Scene<'_>, layout: &Layout) -> Vec<[u8; 3]> {
                     best = best.max(sh);
                 }
             }
-            out[py * w + px] = best.rgb();
+            let region = scene.regions.map_or(0, |g| {
+                g[oxcover_grid::Cell::new((r0 + r1) / 2, (c0 + c1) / 2)]
+            });
+            out[py * w + px] = if best == Shade::Free && region > 0 {
+                region_rgb(region)
+            } else {
+                best.rgb()
+            };
         }
     }
     out
@@ -338,6 +369,7 @@ mod tests {
             coverable: None,
             title: "a title".into(),
             overlay: None,
+            regions: None,
             rows: vec![],
         };
         let (small, _) = parse_ascii("....\n....").unwrap();
@@ -365,6 +397,7 @@ mod tests {
             coverable: None,
             title: String::new(),
             overlay: None,
+            regions: None,
             rows: vec![],
         };
         let l = Layout::of(&scene);

@@ -1,0 +1,169 @@
+//! Rooms of a map for people and files: the segmentation of
+//! [`oxcover_decomp::rooms`] in metres (room areas and centroids, door
+//! centres and widths), as JSON, and drawn with one colour per room.
+
+use oxcover_decomp::{RoomParams, Rooms, morphological};
+use oxcover_grid::OccupancyGrid;
+use serde::Serialize;
+
+use crate::error::{Error, Result};
+use crate::render::{LegendMark, MarkerShape, Overlay, Scene};
+
+/// One room, in metres.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RoomInfo {
+    /// Label (1-based, as in the label grid).
+    pub label: u32,
+    /// Area (m²).
+    pub area_m2: f64,
+    /// Mean position of its cells (m, map frame).
+    pub centroid: [f64; 2],
+    /// Whether it grew from an eroded seed (else a free region no seed reached).
+    pub seeded: bool,
+}
+
+/// One door, in metres.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DoorInfo {
+    /// The two rooms.
+    pub rooms: [u32; 2],
+    /// Its centre cell's centre (m, map frame).
+    pub centre: [f64; 2],
+    /// Cells on either side of the boundary between the rooms.
+    pub cells: usize,
+}
+
+/// The `oxcover segment --out F.json` object.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RoomsReport {
+    /// Method (`morphological`).
+    pub method: String,
+    /// The limits used.
+    pub min_area_m2: f64,
+    /// The limits used.
+    pub max_area_m2: f64,
+    /// Rooms grown from seeds.
+    pub seeded: usize,
+    /// Every room, seeded ones first.
+    pub rooms: Vec<RoomInfo>,
+    /// Every pair of touching rooms.
+    pub doors: Vec<DoorInfo>,
+}
+
+/// Segments the free cells of `map` into rooms.
+///
+/// # Errors
+/// [`Error::BadParameter`] naming `--min-area` or `--max-area` when they are
+/// not finite and positive, or the minimum exceeds the maximum.
+pub fn segment(map: &OccupancyGrid, min_area_m2: f64, max_area_m2: f64) -> Result<Rooms> {
+    let min = oxcover_grid::error::positive("--min-area", min_area_m2)?;
+    let max = oxcover_grid::error::positive("--max-area", max_area_m2)?;
+    if min > max {
+        return Err(Error::BadParameter {
+            name: "--min-area",
+            value: min.to_string(),
+            expected: format!("at most --max-area ({max})"),
+        });
+    }
+    let params = RoomParams {
+        resolution: map.resolution(),
+        min_area_m2: min,
+        max_area_m2: max,
+    };
+    Ok(morphological(&map.free_mask(), &params))
+}
+
+/// The report of `rooms` on `map`.
+#[must_use]
+pub fn report(
+    map: &OccupancyGrid,
+    rooms: &Rooms,
+    min_area_m2: f64,
+    max_area_m2: f64,
+) -> RoomsReport {
+    let f = map.frame();
+    let cell = f.resolution() * f.resolution();
+    let mut sums = vec![(0.0, 0.0); rooms.count()];
+    for c in rooms.labels.cells() {
+        let l = rooms.labels[c] as usize;
+        if l > 0 {
+            let p = f.cell_center(c);
+            sums[l - 1].0 += p.x;
+            sums[l - 1].1 += p.y;
+        }
+    }
+    let rooms_out = rooms
+        .areas
+        .iter()
+        .zip(&sums)
+        .enumerate()
+        .map(|(i, (&n, &(sx, sy)))| RoomInfo {
+            label: i as u32 + 1,
+            area_m2: n as f64 * cell,
+            centroid: [sx / n as f64, sy / n as f64],
+            seeded: i < rooms.seeded,
+        })
+        .collect();
+    let doors = rooms
+        .doors
+        .iter()
+        .map(|d| {
+            let p = f.cell_center(d.centre);
+            DoorInfo {
+                rooms: [d.rooms.0, d.rooms.1],
+                centre: [p.x, p.y],
+                cells: d.cells.len(),
+            }
+        })
+        .collect();
+    RoomsReport {
+        method: "morphological".into(),
+        min_area_m2,
+        max_area_m2,
+        seeded: rooms.seeded,
+        rooms: rooms_out,
+        doors,
+    }
+}
+
+/// Door centres as markers over a picture of the rooms.
+#[must_use]
+pub fn door_overlay(map: &OccupancyGrid, rooms: &Rooms) -> Overlay {
+    let f = map.frame();
+    let red = [200, 30, 30];
+    Overlay {
+        strokes: Vec::new(),
+        lines: Vec::new(),
+        markers: rooms
+            .doors
+            .iter()
+            .map(|d| (f.cell_center(d.centre), red, MarkerShape::Disc, 4.0))
+            .collect(),
+        legend: vec![("door".into(), red, LegendMark::Marker(MarkerShape::Disc))],
+    }
+}
+
+/// A picture of `rooms` on `map`: one colour per room, doors marked.
+#[must_use]
+pub fn scene<'a>(
+    map: &'a OccupancyGrid,
+    rooms: &'a Rooms,
+    overlay: &'a Overlay,
+    title: String,
+) -> Scene<'a> {
+    let mut s = Scene::map_only(
+        map,
+        title,
+        vec![
+            ("rooms".into(), rooms.seeded.to_string()),
+            (
+                "other regions".into(),
+                (rooms.count() - rooms.seeded).to_string(),
+            ),
+            ("doors".into(), rooms.doors.len().to_string()),
+        ],
+    );
+    s.regions = Some(&rooms.labels);
+    s.overlay = Some(overlay);
+    s
+}
