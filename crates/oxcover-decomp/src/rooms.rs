@@ -25,9 +25,15 @@
 //! 4. Doors are where two rooms meet: the cells of each room pair that touch
 //!    the other room, with the one nearest their middle as the door's centre.
 //!
-//! This is the method of the `ipa_room_segmentation` package's morphological
-//! segmenter (Bormann et al. 2016, "Room segmentation: survey, implementation,
-//! and analysis"), written anew on this workspace's exact clearance.
+//! This is the morphological segmenter of Bormann et al. 2016 ("Room
+//! segmentation: survey, implementation, and analysis"; the
+//! `ipa_room_segmentation` package), written anew on this workspace's exact
+//! clearance, with one departure: there a piece becomes a room the first time
+//! its area is in range, so two small rooms joined by a door (together still
+//! below the upper limit) come out as one room; here a piece must also not
+//! split into two room-sized pieces further down the erosion tree. Free
+//! regions no seed reaches are rooms of their own here (the survey leaves
+//! them unlabelled), so every free cell belongs to exactly one room.
 
 use std::collections::{BTreeMap, VecDeque};
 

@@ -56,9 +56,9 @@ pub fn planners() -> Vec<PlannerInfo> {
 /// The planner `name` with `options`, for the command line.
 ///
 /// # Errors
-/// [`Error::BadParameter`] naming `--planner` and listing the known names (with
-/// a pointer to `explore` for the sensor-based planner); an option the
-/// planner does not take ([`oxcover_planners::Error::OptionNotTaken`]).
+/// [`Error::BadParameter`] naming `--planner` and listing the known names
+/// (the sensor-based planner is not among them: it runs on worlds, through
+/// `oxcover explore`); an option the planner does not take ([`oxcover_planners::Error::OptionNotTaken`]).
 pub fn planner(name: &str, options: &PlannerOptions) -> Result<Arc<dyn Planner>> {
     oxcover_planners::build(name, options).map_err(|e| match e {
         oxcover_planners::Error::UnknownPlanner(_) => Error::BadParameter {

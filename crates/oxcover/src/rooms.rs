@@ -38,9 +38,9 @@ pub struct DoorInfo {
 pub struct RoomsReport {
     /// Method (`morphological`).
     pub method: String,
-    /// The limits used.
+    /// Smallest room seed asked for (m²).
     pub min_area_m2: f64,
-    /// The limits used.
+    /// Largest room seed asked for (m²).
     pub max_area_m2: f64,
     /// Rooms grown from seeds.
     pub seeded: usize,
