@@ -152,7 +152,9 @@ pub fn run_map(spec: &SweepSpec, i: usize) -> MapRecord {
     for name in &spec.planners {
         let request = PlanRequest::new(name, map.resolution()).map(|r| PlanRequest {
             seed: spec.seed + i as u64,
-            ..r.start(Start::LargestRegion).boundary_pass(false)
+            ..r.start(Start::LargestRegion)
+                .boundary_pass(false)
+                .rooms(false)
         });
         let t = Instant::now();
         let rec = match request.and_then(|r| plan(&map, &r)) {

@@ -58,18 +58,23 @@ pub mod problem;
 pub mod pso;
 pub mod rect_priority;
 pub mod registry;
+pub mod room_tour;
 mod route;
 pub mod smooth;
 pub mod stc;
 pub mod sweep;
 #[cfg(test)]
 mod testing;
+pub mod time;
+pub mod tour;
 
 pub use boundary_pass::{BoundaryRoute, boundary_pass};
 pub use error::{Error, Result};
 pub use planner::{Planner, PlannerOptions, steps};
 pub use problem::{
-    CoverageProblem, PlanOutput, PlannerInput, Start, coarse_block, largest_region_cell,
+    CoverageProblem, PlanOutput, PlannerInput, Start, Transit, coarse_block, largest_region_cell,
     largest_region_start,
 };
 pub use registry::{build, find, registry};
+pub use room_tour::{RoomUnits, room_order};
+pub use time::TimeModel;

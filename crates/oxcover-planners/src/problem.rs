@@ -32,6 +32,8 @@ use oxcover_grid::{
 
 use crate::boundary_pass::{BoundaryRoute, boundary_pass};
 use crate::error::{Error, Result};
+use crate::metre_path::PathBuilder;
+use crate::time::TimeModel;
 
 /// Where the robot starts.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -92,6 +94,8 @@ pub struct CoverageProblem {
     tool_cells: f64,
     /// The start position asked for, when it was a position.
     start_point: Option<Point>,
+    /// Speeds planners score their choices with.
+    time: TimeModel,
 }
 
 impl CoverageProblem {
@@ -129,7 +133,22 @@ impl CoverageProblem {
             coarse,
             tool_cells: robot.tool_cells(frame.resolution()),
             start_point,
+            time: TimeModel::default(),
         })
+    }
+
+    /// The same problem with the speeds planners score their choices with
+    /// (default: the contract's 0.3 m/s and 0.52 rad/s).
+    #[must_use]
+    pub fn with_time(mut self, time: TimeModel) -> Self {
+        self.time = time;
+        self
+    }
+
+    /// The speeds planners score their choices with.
+    #[must_use]
+    pub fn time(&self) -> TimeModel {
+        self.time
     }
 
     /// The problem on a sub-region: plannable cells are those of this problem
@@ -172,6 +191,7 @@ impl CoverageProblem {
             coarse,
             tool_cells: self.tool_cells,
             start_point: None,
+            time: self.time,
         })
     }
 
@@ -185,6 +205,7 @@ impl CoverageProblem {
             seed,
             frame: self.frame,
             tool_cells: self.tool_cells,
+            time: self.time,
         }
     }
 
@@ -271,6 +292,30 @@ impl CoverageProblem {
             .ok_or_else(|| Error::Internal("lead-in retrace failed".into()))
     }
 
+    /// The shortest way from the plannable cell `from` to the nearest
+    /// plannable cell where `is_target` holds (ties: row-major first): its
+    /// 4-connected cells, and its waypoints straightened into an any-angle
+    /// path (string pulling over the cell route, each shortcut checked by
+    /// exact traversal, so it never cuts a corner of a wall).
+    ///
+    /// # Errors
+    /// [`Error::Internal`] when no target is reachable from `from`.
+    pub fn transit(&self, from: Cell, is_target: impl FnMut(Cell) -> bool) -> Result<Transit> {
+        let plannable = &self.cells.reachable;
+        let mut wave = Wavefront::new(plannable);
+        let near = cidt(&mut wave, &[from], is_target)
+            .ok_or_else(|| Error::Internal(format!("no target reachable from {from:?}")))?;
+        let cells = wave
+            .retrace(near.first())
+            .ok_or_else(|| Error::Internal("transit retrace failed".into()))?;
+        let mut path = PathBuilder::new(plannable, from);
+        path.follow(cells.get(1..).unwrap_or_default(), f64::INFINITY);
+        Ok(Transit {
+            points: path.into_metres(&self.frame),
+            cells,
+        })
+    }
+
     /// The route covering what `points` leaves uncovered, from the plannable
     /// cell `end` ([`boundary_pass`]).
     ///
@@ -279,6 +324,16 @@ impl CoverageProblem {
     pub fn boundary_pass(&self, points: &[Point], end: Cell) -> Result<BoundaryRoute> {
         boundary_pass(&self.frame, &self.cells, points, end)
     }
+}
+
+/// A way between two places ([`CoverageProblem::transit`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Transit {
+    /// The 4-connected plannable cells, both ends included.
+    pub cells: Vec<Cell>,
+    /// The straightened waypoints (metres, map frame), from the first
+    /// cell's centre to the last's.
+    pub points: Vec<Point>,
 }
 
 /// What a planner returns.
@@ -320,6 +375,8 @@ pub struct PlannerInput<'a> {
     /// Tool radius in fine cells, `T / resolution`: a fine cell counts as
     /// covered when its centre passes within it (the contract).
     pub tool_cells: f64,
+    /// Speeds to score choices with (estimated time, the objective).
+    pub time: TimeModel,
 }
 
 impl PlannerInput<'_> {

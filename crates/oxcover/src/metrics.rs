@@ -10,6 +10,8 @@
 //! | `redundancy` | `length_m · 2T / covered area` (1.0 = no overlap; `null` when nothing is covered) |
 //! | `steps` | `length_m / resolution` |
 //! | `est_time_s` | `length_m / v + rotation_rad / w`, v = 0.3 m/s, w = 0.52 rad/s unless set |
+//! | `bound_time_s` | `covered area / 2T / v`: straight lanes of the tool's width, no overlap, no turn |
+//! | `time_efficiency` | `bound_time_s / est_time_s` (`null` when the path takes no time) |
 //!
 //! The coverable set is the contract's, built from the path's first waypoint as
 //! the start. "Covered area" is the number of covered coverable cells times the
@@ -20,27 +22,14 @@
 use oxcover_grid::footprint::{for_each_sample, mark_disc};
 use oxcover_grid::math::{heading, wrap_angle};
 use oxcover_grid::{Coverability, DiscRobot, Grid, MapFrame, OccupancyGrid, Point};
+use oxcover_planners::TimeModel;
 use serde::Serialize;
 
 use crate::error::Result;
 
-/// Speeds used for `est_time_s`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct MetricParams {
-    /// Linear speed v in m/s. Default 0.3 (contract).
-    pub linear_speed: f64,
-    /// Turning rate w in rad/s. Default 0.52 (contract).
-    pub angular_speed: f64,
-}
-
-impl Default for MetricParams {
-    fn default() -> Self {
-        Self {
-            linear_speed: 0.3,
-            angular_speed: 0.52,
-        }
-    }
-}
+/// Speeds used for `est_time_s` (the planners' [`TimeModel`]: v = 0.3 m/s,
+/// w = 0.52 rad/s by default).
+pub type MetricParams = TimeModel;
 
 /// The contract's metrics of one path, plus the counts behind them.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -61,6 +50,12 @@ pub struct Metrics {
     pub steps: f64,
     /// `length / v + rotation / w` in seconds.
     pub est_time_s: f64,
+    /// `covered area / 2T / v` in seconds: straight lanes of the tool's
+    /// width, no overlap, no turn (a lower bound in practice).
+    pub bound_time_s: f64,
+    /// `bound_time_s / est_time_s`; `None` (JSON null) when the path takes
+    /// no time (a single waypoint).
+    pub time_efficiency: Option<f64>,
     /// Covered coverable cells.
     pub covered_cells: usize,
     /// Coverable cells.
@@ -152,6 +147,8 @@ pub fn evaluate_problem(
         .count();
     let shape = PathShape::of(points, res);
     let covered_area = covered_cells as f64 * res * res;
+    let est_time_s = params.time(shape.length_m, shape.rotation_rad);
+    let bound_time_s = covered_area / (2.0 * tool) / params.linear_speed;
     let metrics = Metrics {
         coverage: if coverable_cells == 0 {
             0.0
@@ -164,8 +161,9 @@ pub fn evaluate_problem(
         rotation_rad: shape.rotation_rad,
         redundancy: (covered_area > 0.0).then(|| shape.length_m * 2.0 * tool / covered_area),
         steps: shape.length_m / res,
-        est_time_s: shape.length_m / params.linear_speed
-            + shape.rotation_rad / params.angular_speed,
+        est_time_s,
+        bound_time_s,
+        time_efficiency: (est_time_s > 0.0).then(|| bound_time_s / est_time_s),
         covered_cells,
         coverable_cells,
         samples,
@@ -176,6 +174,31 @@ pub fn evaluate_problem(
         covered,
         problem,
     }
+}
+
+/// Coverage (covered coverable cells / coverable cells) of several
+/// polylines together, each sampled as the metrics sample a path (no move
+/// between them is counted).
+#[must_use]
+pub fn coverage_of(frame: &MapFrame, problem: &Coverability, pieces: &[Vec<Point>]) -> f64 {
+    let tool = problem.robot.tool_radius;
+    let mut covered = Grid::new(frame.width(), frame.height(), false);
+    for piece in pieces {
+        for_each_sample(piece, frame.resolution() / 4.0, |p| {
+            mark_disc(frame, p, tool, &mut covered);
+        });
+    }
+    let coverable = problem.coverable_count();
+    if coverable == 0 {
+        return 0.0;
+    }
+    let hit = covered
+        .as_slice()
+        .iter()
+        .zip(problem.coverable.as_slice())
+        .filter(|(a, b)| **a && **b)
+        .count();
+    hit as f64 / coverable as f64
 }
 
 /// Length and turning of a polyline, as the metrics define them.
@@ -284,6 +307,20 @@ mod tests {
         assert_eq!(m.turns, 2);
         assert_eq!(m.redundancy, Some(7.0 / 8.0));
         assert!((m.est_time_s - (7.0 / 0.3 + PI / 0.52)).abs() < 1e-9);
+        // 8 covered cells of 1 m², a tool 1 m wide, at 0.3 m/s.
+        assert!((m.bound_time_s - 8.0 / 0.3).abs() < 1e-9);
+        let eff = m.time_efficiency.unwrap_or_default();
+        assert!((eff - m.bound_time_s / m.est_time_s).abs() < 1e-12);
+        let slow = evaluate(
+            &map,
+            DiscRobot::cell_sized(1.0),
+            &pts,
+            &MetricParams::new(0.1, 1.0).unwrap(),
+        )
+        .unwrap()
+        .metrics;
+        assert!((slow.est_time_s - (7.0 / 0.1 + PI)).abs() < 1e-9);
+        assert!((slow.bound_time_s - 80.0).abs() < 1e-9);
         assert_eq!(m.samples, 1 + 12 + 4 + 12);
     }
 

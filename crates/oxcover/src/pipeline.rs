@@ -17,15 +17,16 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
+use oxcover_decomp::{RoomParams, morphological};
 use oxcover_grid::{Cell, Coverability, DiscRobot, OccupancyGrid, Point, components4};
 use oxcover_planners::{
-    BoundaryRoute, CoverageProblem, PlanOutput, Planner, PlannerOptions, Start,
-    largest_region_cell, registry,
+    BoundaryRoute, CoverageProblem, PlanOutput, Planner, PlannerOptions, RoomUnits, Start,
+    TimeModel, largest_region_cell, registry, room_order,
 };
 use serde::Serialize;
 
 use crate::error::{Error, Result};
-use crate::metrics::{Evaluation, MetricParams, evaluate_problem};
+use crate::metrics::{Evaluation, coverage_of, evaluate_problem};
 use crate::path::{cells_to_points, write_csv};
 use crate::render::{Scene, render_to_file};
 use crate::report::{BoundaryStats, PlanParameters, PlanReport, metric_rows};
@@ -87,6 +88,12 @@ pub struct PlanRequest {
     pub seed: u64,
     /// Append the boundary pass. Default on.
     pub boundary_pass: bool,
+    /// Plan room by room where the map has more than one room. Default on;
+    /// the papers' grid experiments turn it off.
+    pub rooms: bool,
+    /// Speeds for estimated time, the planners' objective and the metrics'
+    /// `est_time_s` (default: the contract's 0.3 m/s and 0.52 rad/s).
+    pub time: TimeModel,
 }
 
 impl std::fmt::Debug for PlanRequest {
@@ -98,6 +105,8 @@ impl std::fmt::Debug for PlanRequest {
             .field("start", &self.start)
             .field("seed", &self.seed)
             .field("boundary_pass", &self.boundary_pass)
+            .field("rooms", &self.rooms)
+            .field("time", &self.time)
             .finish()
     }
 }
@@ -105,7 +114,8 @@ impl std::fmt::Debug for PlanRequest {
 impl PlanRequest {
     /// A request for the registered planner `name` with its default options
     /// and the contract's defaults for a map of `resolution` (robot radius 0,
-    /// tool radius half a cell, first admissible cell, seed 0, boundary pass on).
+    /// tool radius half a cell, first admissible cell, seed 0, boundary pass
+    /// on, rooms on, the contract's speeds).
     ///
     /// # Errors
     /// As [`planner`].
@@ -125,6 +135,8 @@ impl PlanRequest {
             start: Start::First,
             seed: 0,
             boundary_pass: true,
+            rooms: true,
+            time: TimeModel::default(),
         }
     }
 
@@ -149,12 +161,26 @@ impl PlanRequest {
         self
     }
 
+    /// The same request planning room by room (on) or the whole map at once (off).
+    #[must_use]
+    pub fn rooms(mut self, on: bool) -> Self {
+        self.rooms = on;
+        self
+    }
+
+    /// The same request with other speeds for estimated time.
+    #[must_use]
+    pub fn time(mut self, time: TimeModel) -> Self {
+        self.time = time;
+        self
+    }
+
     /// The coverage problem this request poses on `map`.
     ///
     /// # Errors
     /// Bad radii or start ([`oxcover_grid::Error`]).
     pub fn problem(&self, map: &OccupancyGrid) -> Result<CoverageProblem> {
-        Ok(CoverageProblem::new(map, self.robot, self.start)?)
+        Ok(CoverageProblem::new(map, self.robot, self.start)?.with_time(self.time))
     }
 }
 
@@ -170,11 +196,16 @@ pub struct PlanOutcome {
     pub evaluation: Evaluation,
     /// Coverage of the planner's own path, before the boundary pass.
     pub coverage_without_boundary_pass: f64,
-    /// What the boundary pass did, if it ran.
+    /// What the boundary pass did, if it ran (summed over room units).
     pub boundary: Option<BoundaryRoute>,
+    /// Length of the path the boundary pass added (m).
+    pub boundary_length_m: f64,
+    /// Room units planned one after another, when the plan went room by
+    /// room (`None`: the whole map at once).
+    pub room_units: Option<usize>,
     /// Fine cells per coverage-cell side.
     pub coarse_block: usize,
-    /// Planning time in milliseconds (problem, planner, boundary pass).
+    /// Planning time in milliseconds (problem, rooms, planner, boundary pass).
     pub plan_ms: f64,
 }
 
@@ -207,6 +238,9 @@ impl PlanOutcome {
             start: [start.x, start.y],
             seed: request.seed,
             boundary_pass: request.boundary_pass,
+            rooms: request.rooms,
+            speed: request.time.linear_speed,
+            turn_rate: request.time.angular_speed,
             sweep_angle_deg: request.planner.options().sweep_angle_deg,
             coverage_cell_m: self.coarse_block as f64 * map.resolution(),
         };
@@ -219,7 +253,14 @@ impl PlanOutcome {
                 pending_cells: b.pending,
                 anchors: b.anchors,
                 appended_cells: b.cells.len(),
+                length_m: self.boundary_length_m,
+                length_share: if self.evaluation.metrics.length_m > 0.0 {
+                    self.boundary_length_m / self.evaluation.metrics.length_m
+                } else {
+                    0.0
+                },
             }),
+            room_units: self.room_units,
             metrics: self.evaluation.metrics.clone(),
         }
     }
@@ -231,21 +272,60 @@ impl PlanOutcome {
 /// a metre path is used as given after the lead-in from the start, so its
 /// collisions are whatever the planner made (the metrics count them).
 ///
+/// With [`PlanRequest::rooms`] on and more than one room unit on the map
+/// ([`room_units`]), the planner plans each unit on its own
+/// ([`CoverageProblem::restricted`]), the boundary pass runs per unit, and
+/// the units are visited in the order of [`room_order`], joined by
+/// straightened shortest transits ([`CoverageProblem::transit`]): every room
+/// is finished before the robot leaves it.
+///
 /// # Errors
 /// Bad radii or start ([`oxcover_grid::Error`]), a planner's refusal
 /// ([`oxcover_planners::Error::TooLarge`]) or an internal fault.
 pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
     let t0 = Instant::now();
     let problem = request.problem(map)?;
-    plan_problem(&problem, request, t0)
+    let units = if request.rooms {
+        Some(room_units(map, &problem))
+    } else {
+        None
+    };
+    match units.filter(|u| u.count() > 1) {
+        Some(units) => plan_rooms(&problem, &units, request, t0),
+        None => plan_whole(&problem, request, t0),
+    }
 }
 
-/// Plans on a problem already made (its making counted from `t0`).
-fn plan_problem(
+/// The room units of `problem` on `map`: the morphological segmentation of
+/// the free cells with indoor defaults ([`RoomParams::indoor`]), split into
+/// connected plannable parts, parts smaller than four coverage cells merged
+/// into a neighbour.
+#[must_use]
+pub fn room_units(map: &OccupancyGrid, problem: &CoverageProblem) -> RoomUnits {
+    let rooms = morphological(&map.free_mask(), &RoomParams::indoor(map.resolution()));
+    let block = problem.block();
+    RoomUnits::new(problem.plannable(), &rooms.labels, 4 * block * block)
+}
+
+/// One region's plan: the planner's path from the region's start (after
+/// `prefix`), then its boundary pass.
+struct RegionPlan {
+    /// Fine cells (lead-in and plan; the pass's cells after them).
+    cells: Vec<Cell>,
+    /// `prefix`, then the plan's waypoints, before the boundary pass.
+    raw: Vec<Point>,
+    /// `raw`, then the boundary pass.
+    points: Vec<Point>,
+    boundary: Option<BoundaryRoute>,
+    /// The plannable cell the region's path ends in.
+    end: Cell,
+}
+
+fn plan_region(
     problem: &CoverageProblem,
     request: &PlanRequest,
-    t0: Instant,
-) -> Result<PlanOutcome> {
+    prefix: Vec<Point>,
+) -> Result<RegionPlan> {
     let frame = problem.frame();
     let output = request.planner.plan(&problem.input(request.seed))?;
     let (planned, tail) = match &output {
@@ -260,60 +340,175 @@ fn plan_problem(
     };
     let mut cells = problem.lead_in(planned.first().copied())?;
     cells.extend(planned.into_iter().skip(1));
-    let mut prefix = Vec::new();
-    if let Some(s) = problem.start_point() {
-        if frame.cell_center(problem.start_cell()) != s {
-            prefix.push(s);
-        }
-    }
     // A metre plan continues after the lead-in's cells; the boundary pass
     // then starts from the cell of its last point.
-    let to_points = |cells: &[Cell], extra: &[Cell]| {
-        let mut pts = prefix.clone();
-        pts.extend(cells_to_points(frame, cells));
-        pts.extend(tail.iter().copied());
-        pts.extend(cells_to_points(frame, extra));
-        pts
-    };
-    let raw_points = to_points(&cells, &[]);
-    let mut plan_time = t0.elapsed();
-    let params = MetricParams::default();
-    let raw = evaluate_problem(frame, problem.cells().clone(), &raw_points, &params);
-    let t1 = Instant::now();
-    let mut extra = Vec::new();
+    let mut raw = prefix;
+    raw.extend(cells_to_points(frame, &cells));
+    raw.extend(tail);
+    let last_cell = raw
+        .last()
+        .and_then(|p| frame.cell_at(p))
+        .filter(|&c| problem.plannable()[c]);
+    let end = last_cell
+        .or_else(|| cells.last().copied())
+        .unwrap_or(problem.start_cell());
+    let mut points = raw.clone();
     let boundary = if request.boundary_pass {
-        let last_cell = raw_points
-            .last()
-            .and_then(|p| frame.cell_at(p))
-            .filter(|&c| problem.plannable()[c]);
-        let end = last_cell
-            .or_else(|| cells.last().copied())
-            .unwrap_or(problem.start_cell());
-        let route = problem.boundary_pass(&raw_points, end)?;
+        let route = problem.boundary_pass(&raw, end)?;
+        let mut extra = Vec::new();
         // The pass starts from `end`'s centre; a metre plan may stop elsewhere
         // in that cell, so go to the centre first (a move inside one cell).
-        let off_centre = raw_points.last() != Some(&frame.cell_center(end));
+        let off_centre = raw.last() != Some(&frame.cell_center(end));
         if off_centre && route.pending > 0 {
             extra.push(end);
         }
         extra.extend_from_slice(&route.cells);
+        points.extend(cells_to_points(frame, &extra));
+        cells.extend(extra);
         Some(route)
     } else {
         None
     };
-    let points = to_points(&cells, &extra);
-    cells.extend(extra);
-    plan_time += t1.elapsed();
-    let evaluation = evaluate_problem(frame, problem.cells().clone(), &points, &params);
+    // Where the region's path stops (the next transit starts there).
+    let end = points
+        .last()
+        .and_then(|p| frame.cell_at(p))
+        .filter(|&c| problem.plannable()[c])
+        .or_else(|| cells.last().copied())
+        .unwrap_or(end);
+    Ok(RegionPlan {
+        cells,
+        raw,
+        points,
+        boundary,
+        end,
+    })
+}
+
+/// The start position when it is not its cell's centre (the path's first
+/// waypoint then).
+fn start_prefix(problem: &CoverageProblem) -> Vec<Point> {
+    problem
+        .start_point()
+        .filter(|&s| problem.frame().cell_center(problem.start_cell()) != s)
+        .into_iter()
+        .collect()
+}
+
+/// Plans the whole problem at once.
+fn plan_whole(
+    problem: &CoverageProblem,
+    request: &PlanRequest,
+    t0: Instant,
+) -> Result<PlanOutcome> {
+    let region = plan_region(problem, request, start_prefix(problem))?;
+    let plan_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let boundary_length_m = polyline_length(&region.points) - polyline_length(&region.raw);
+    finish(
+        problem,
+        request,
+        region.points,
+        region.cells,
+        &[region.raw],
+        region.boundary,
+        boundary_length_m,
+        None,
+        plan_ms,
+    )
+}
+
+/// Plans unit by unit in the order of [`room_order`].
+fn plan_rooms(
+    problem: &CoverageProblem,
+    units: &RoomUnits,
+    request: &PlanRequest,
+    t0: Instant,
+) -> Result<PlanOutcome> {
+    let order = room_order(problem, units);
+    let mut points: Vec<Point> = Vec::new();
+    let mut cells: Vec<Cell> = Vec::new();
+    let mut raws = Vec::new();
+    let mut boundary: Option<BoundaryRoute> = None;
+    let mut boundary_length_m = 0.0;
+    let mut here = problem.start_cell();
+    for (i, &u) in order.iter().enumerate() {
+        let (entry, prefix) = if i == 0 {
+            (here, start_prefix(problem))
+        } else {
+            let t = problem.transit(here, |c| units.labels[c] == u)?;
+            let entry = t.cells.last().copied().unwrap_or(here);
+            cells.extend(t.cells.iter().skip(1).copied());
+            let mut prefix = t.points;
+            prefix.pop();
+            (entry, prefix)
+        };
+        let sub = problem.restricted(&units.mask(u), entry)?;
+        let region = plan_region(&sub, request, prefix)?;
+        boundary_length_m += polyline_length(&region.points) - polyline_length(&region.raw);
+        for p in &region.points {
+            if points.last() != Some(p) {
+                points.push(*p);
+            }
+        }
+        cells.extend(region.cells.iter().skip(usize::from(i > 0)).copied());
+        raws.push(region.raw);
+        if let Some(b) = region.boundary {
+            let total = boundary.get_or_insert(BoundaryRoute {
+                cells: Vec::new(),
+                pending: 0,
+                anchors: 0,
+            });
+            total.pending += b.pending;
+            total.anchors += b.anchors;
+            total.cells.extend(b.cells);
+        }
+        here = region.end;
+    }
+    let plan_ms = t0.elapsed().as_secs_f64() * 1e3;
+    finish(
+        problem,
+        request,
+        points,
+        cells,
+        &raws,
+        boundary,
+        boundary_length_m,
+        Some(order.len()),
+        plan_ms,
+    )
+}
+
+/// Scores a finished plan.
+#[allow(clippy::too_many_arguments)]
+fn finish(
+    problem: &CoverageProblem,
+    request: &PlanRequest,
+    points: Vec<Point>,
+    cells: Vec<Cell>,
+    raws: &[Vec<Point>],
+    boundary: Option<BoundaryRoute>,
+    boundary_length_m: f64,
+    room_units: Option<usize>,
+    plan_ms: f64,
+) -> Result<PlanOutcome> {
+    let frame = problem.frame();
+    let coverage_without_boundary_pass = coverage_of(frame, problem.cells(), raws);
+    let evaluation = evaluate_problem(frame, problem.cells().clone(), &points, &request.time);
     Ok(PlanOutcome {
         points,
         cells,
         evaluation,
-        coverage_without_boundary_pass: raw.metrics.coverage,
+        coverage_without_boundary_pass,
         boundary,
+        boundary_length_m,
+        room_units,
         coarse_block: problem.block(),
-        plan_ms: plan_time.as_secs_f64() * 1e3,
+        plan_ms,
     })
+}
+
+fn polyline_length(points: &[Point]) -> f64 {
+    points.windows(2).map(|w| (w[1] - w[0]).norm()).sum()
 }
 
 /// Where to write a plan's outputs (each optional).

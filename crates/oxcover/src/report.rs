@@ -27,6 +27,12 @@ pub struct PlanParameters {
     pub seed: u64,
     /// Whether the boundary pass ran.
     pub boundary_pass: bool,
+    /// Whether the plan was asked to go room by room.
+    pub rooms: bool,
+    /// Linear speed for `est_time_s` (m/s).
+    pub speed: f64,
+    /// Turning rate for `est_time_s` (rad/s).
+    pub turn_rate: f64,
     /// The fixed sweep angle in degrees, when one was asked for.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sweep_angle_deg: Option<f64>,
@@ -35,7 +41,7 @@ pub struct PlanParameters {
 }
 
 /// Boundary-pass statistics.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct BoundaryStats {
     /// Coverable cells the planner left uncovered.
     pub pending_cells: usize,
@@ -43,6 +49,10 @@ pub struct BoundaryStats {
     pub anchors: usize,
     /// Fine cells the pass appended.
     pub appended_cells: usize,
+    /// Length the pass added (m).
+    pub length_m: f64,
+    /// Its share of the path's length.
+    pub length_share: f64,
 }
 
 /// The `plan --report` object.
@@ -58,6 +68,9 @@ pub struct PlanReport {
     pub coverage_without_boundary_pass: f64,
     /// What the boundary pass did (null when off).
     pub boundary: Option<BoundaryStats>,
+    /// Room units planned one after another (null: the whole map at once,
+    /// because rooms were off or the map has one room).
+    pub room_units: Option<usize>,
     /// The metrics of the final path (flattened into the object).
     #[serde(flatten)]
     pub metrics: Metrics,
@@ -106,6 +119,12 @@ pub fn metric_rows(m: &Metrics) -> Vec<(String, String)> {
         ),
         ("steps".to_string(), format!("{:.0}", m.steps)),
         ("est_time_s".to_string(), format!("{:.0}", m.est_time_s)),
+        ("bound_time_s".to_string(), format!("{:.0}", m.bound_time_s)),
+        (
+            "time_efficiency".to_string(),
+            m.time_efficiency
+                .map_or_else(|| "-".to_string(), |r| format!("{r:.3}")),
+        ),
     ];
     rows.push((
         "covered".to_string(),

@@ -39,7 +39,7 @@ fn json(text: &str) -> serde_json::Value {
     serde_json::from_str(text).expect("valid JSON")
 }
 
-const METRIC_KEYS: [&str; 8] = [
+const METRIC_KEYS: [&str; 10] = [
     "coverage",
     "collisions",
     "length_m",
@@ -48,6 +48,8 @@ const METRIC_KEYS: [&str; 8] = [
     "redundancy",
     "steps",
     "est_time_s",
+    "bound_time_s",
+    "time_efficiency",
 ];
 
 fn plan_and_eval(map: &str, extra: &[&str], dir: &Path) -> (serde_json::Value, serde_json::Value) {
@@ -66,11 +68,16 @@ fn plan_and_eval(map: &str, extra: &[&str], dir: &Path) -> (serde_json::Value, s
     args.extend_from_slice(extra);
     run(&args);
     let mut eargs = vec!["eval", map, &csv];
-    eargs.extend(
-        extra
-            .iter()
-            .filter(|a| **a != "--boundary-pass" && **a != "off"),
-    );
+    // `eval` takes the robot's options, not the planning ones.
+    let mut i = 0;
+    while i < extra.len() {
+        if matches!(extra[i], "--boundary-pass" | "--rooms") {
+            i += 2;
+        } else {
+            eargs.push(extra[i]);
+            i += 1;
+        }
+    }
     let (eval, _) = run(&eargs);
     (
         json(&std::fs::read_to_string(&report).expect("read report")),
@@ -95,14 +102,23 @@ fn plan_then_eval_agree_on_a_ros_map_with_a_real_robot() {
     assert_eq!(report["parameters"]["robot_radius"], 0.15);
     assert!(report["coverage_without_boundary_pass"].as_f64().unwrap() < 1.0);
 
+    assert!(report["room_units"].as_u64().unwrap() > 1);
+    let share = report["boundary"]["length_share"].as_f64().unwrap();
+    assert!(share > 0.0 && share < 1.0, "{share}");
+
+    // Planning the whole map at once, the boundary pass only appends: the
+    // plan without it is the plan with it, cut before the pass.
+    let whole = [&extra[..], &["--rooms", "off"]].concat();
+    let (with_pass, _) = plan_and_eval(&map, &whole, &dir);
+    assert_eq!(with_pass["room_units"], serde_json::Value::Null);
     let (raw, raw_eval) = plan_and_eval(
         &map,
-        &[&extra[..], &["--boundary-pass", "off"]].concat(),
+        &[&whole[..], &["--boundary-pass", "off"]].concat(),
         &dir,
     );
     assert_eq!(raw["boundary"], serde_json::Value::Null);
     assert_eq!(raw["coverage"], raw_eval["coverage"]);
-    assert_eq!(raw["coverage"], report["coverage_without_boundary_pass"]);
+    assert_eq!(raw["coverage"], with_pass["coverage_without_boundary_pass"]);
 }
 
 #[test]

@@ -43,7 +43,9 @@ fn cases() -> Vec<(&'static str, Option<(f64, f64)>)> {
 }
 
 fn row(name: &str, map: &OccupancyGrid, radii: Option<(f64, f64)>, planner: &str) -> String {
-    let mut req = PlanRequest::new(planner, map.resolution()).expect("registered");
+    let mut req = PlanRequest::new(planner, map.resolution())
+        .expect("registered")
+        .rooms(false);
     if let Some((r, t)) = radii {
         req = req.robot(DiscRobot::new(r, t).expect("valid radii"));
     }

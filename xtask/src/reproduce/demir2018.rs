@@ -86,7 +86,8 @@ pub fn measure() -> anyhow::Result<Vec<Measured>> {
             let sweep = planner("boustrophedon", &PlannerOptions::new().sweep_angle(90.0))?;
             let req = PlanRequest::with_planner(sweep, world.resolution)
                 .robot(DiscRobot::new(cfg.robot_radius, cfg.tool_radius)?)
-                .start(Start::from(world.start.map(|s| Point::new(s.x, s.y))));
+                .start(Start::from(world.start.map(|s| Point::new(s.x, s.y))))
+                .rooms(false);
             let off = plan(&clean.map, &req)?;
             let offline = (
                 off.evaluation.metrics.coverage,

@@ -233,6 +233,7 @@ pub fn run_one(
             .robot(robot())
             .start(Start::At(start))
             .boundary_pass(false)
+            .rooms(false)
     };
     let planned = plan(map, &req)?;
     let run = execute(map, robot(), &planned.points, cfg)?;

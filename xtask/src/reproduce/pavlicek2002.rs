@@ -37,7 +37,8 @@ fn problem(map: &OccupancyGrid) -> anyhow::Result<CoverageProblem> {
 fn run_plan(map: &OccupancyGrid, planner: Arc<dyn Planner>) -> anyhow::Result<PlanOutcome> {
     let request = PlanRequest::with_planner(planner, map.resolution())
         .robot(DiscRobot::new(RADIUS, RADIUS)?)
-        .start(Start::LargestRegion);
+        .start(Start::LargestRegion)
+        .rooms(false);
     Ok(plan(map, &request)?)
 }
 

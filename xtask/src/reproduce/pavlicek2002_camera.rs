@@ -266,7 +266,8 @@ fn drive(map: &OccupancyGrid, spacing: f64) -> anyhow::Result<Vec<Pose>> {
     let sweep = planner("boustrophedon", &PlannerOptions::new().sweep_angle(0.0))?;
     let req = PlanRequest::with_planner(sweep, map.resolution())
         .robot(DiscRobot::new(0.25, 0.4)?)
-        .boundary_pass(false);
+        .boundary_pass(false)
+        .rooms(false);
     let points = plan(map, &req)?.points;
     let mut poses = Vec::new();
     let mut carry = 0.0;
@@ -361,7 +362,9 @@ pub fn run() -> anyhow::Result<()> {
         let all = score(&map, &truth, None);
         let mut plans = Vec::new();
         for name in ["boustrophedon", "border-expansion"] {
-            let req = PlanRequest::new(name, map.resolution())?.robot(robot);
+            let req = PlanRequest::new(name, map.resolution())?
+                .robot(robot)
+                .rooms(false);
             let (coverage, collisions, length) = match plan(&map, &req) {
                 Ok(o) => {
                     let ev =

@@ -56,7 +56,8 @@ pub fn runs() -> anyhow::Result<(OccupancyGrid, Vec<Point>, Vec<Run>)> {
     let robot = DiscRobot::new(0.17, CELL / 2.0)?;
     let req = PlanRequest::new("grid-cover", CELL)?
         .robot(robot)
-        .boundary_pass(false);
+        .boundary_pass(false)
+        .rooms(false);
     let reference = plan(&map, &req)?.points;
     let spec = super::lee2011::closed_loop()?.spec;
     let runs = RUNS

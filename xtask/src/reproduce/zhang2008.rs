@@ -124,7 +124,8 @@ fn run_case(case: &Case, planner: &'static str) -> anyhow::Result<Result> {
     // first free cell is often noise).
     let req = PlanRequest::new(planner, case.map.resolution())?
         .robot(case.robot)
-        .start(Start::LargestRegion);
+        .start(Start::LargestRegion)
+        .rooms(false);
     let raw = plan(&case.map, &req.clone().boundary_pass(false))?;
     let full = plan(&case.map, &req)?;
     let m = &raw.evaluation.metrics;
@@ -221,7 +222,8 @@ pub fn run() -> anyhow::Result<()> {
         let req = PlanRequest::new("rect-priority", case.map.resolution())?
             .robot(case.robot)
             .start(Start::LargestRegion)
-            .boundary_pass(false);
+            .boundary_pass(false)
+            .rooms(false);
         let o = plan(&case.map, &req)?;
         let scene = Scene {
             map: &case.map,

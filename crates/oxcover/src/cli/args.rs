@@ -6,6 +6,7 @@ use std::path::Path;
 use clap::ValueEnum;
 use oxcover::grid::io::{ReadOptions, read_map};
 use oxcover::grid::{DiscRobot, OccupancyGrid, Point};
+use oxcover::planners::TimeModel;
 use oxcover::{Error, Result};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -25,6 +26,33 @@ pub(crate) struct RobotArgs {
     /// Resolution in m/cell for images read without a yaml [default: 1.0].
     #[arg(long, value_name = "M", allow_negative_numbers = true)]
     pub(crate) resolution: Option<f64>,
+}
+
+/// Speeds for the estimated time (`est_time_s`, and what planners optimise).
+#[derive(Debug, clap::Args)]
+pub(crate) struct TimeArgs {
+    /// Linear speed in m/s for estimated time.
+    #[arg(
+        long,
+        value_name = "V",
+        default_value_t = 0.3,
+        allow_negative_numbers = true
+    )]
+    pub(crate) speed: f64,
+    /// Turning rate in rad/s for estimated time.
+    #[arg(
+        long,
+        value_name = "W",
+        default_value_t = 0.52,
+        allow_negative_numbers = true
+    )]
+    pub(crate) turn_rate: f64,
+}
+
+impl TimeArgs {
+    pub(crate) fn model(&self) -> Result<TimeModel> {
+        Ok(TimeModel::new(self.speed, self.turn_rate)?)
+    }
 }
 
 pub(crate) fn parse_start(s: &str) -> std::result::Result<Point, String> {

@@ -9,7 +9,7 @@ use oxcover::pipeline::{Outputs, PlanRequest, coverage_notes, plan, planner, wri
 use oxcover::planners::{PlannerOptions, Start};
 use oxcover::report::table;
 
-use super::args::{OnOff, RobotArgs, load, parse_start, robot_of};
+use super::args::{OnOff, RobotArgs, TimeArgs, load, parse_start, robot_of};
 
 #[derive(Debug, clap::Args)]
 pub(crate) struct PlanArgs {
@@ -29,6 +29,13 @@ pub(crate) struct PlanArgs {
     /// Append a pass along obstacle boundaries covering what the planner missed.
     #[arg(long, value_enum, value_name = "on|off", default_value_t = OnOff::On)]
     pub(crate) boundary_pass: OnOff,
+    /// Plan room by room (rooms found by morphological segmentation, each
+    /// finished before the next, in the order of least transit time); off
+    /// plans the whole map at once. A map with one room plans the same either way.
+    #[arg(long, value_enum, value_name = "on|off", default_value_t = OnOff::On)]
+    pub(crate) rooms: OnOff,
+    #[command(flatten)]
+    pub(crate) time: TimeArgs,
     /// Sweep angle in degrees for boustrophedon and trapezoidal (lanes along it,
     /// counter-clockwise from the map's x axis) [default: best of 0, 15, ..., 165].
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
@@ -51,6 +58,7 @@ pub(crate) struct PlanArgs {
 pub(crate) fn map_and_request(a: &PlanArgs) -> Result<(OccupancyGrid, PlanRequest)> {
     let map = load(&a.map, a.robot.resolution)?;
     let robot = robot_of(&a.robot, &map)?;
+    let time = a.time.model()?;
     let mut options = PlannerOptions::new();
     options.sweep_angle_deg = a.sweep_angle;
     let request = PlanRequest {
@@ -59,6 +67,8 @@ pub(crate) fn map_and_request(a: &PlanArgs) -> Result<(OccupancyGrid, PlanReques
         start: Start::from(a.start),
         seed: a.seed,
         boundary_pass: a.boundary_pass == OnOff::On,
+        rooms: a.rooms == OnOff::On,
+        time,
     };
     Ok((map, request))
 }
@@ -82,12 +92,15 @@ pub(crate) fn cmd_plan(a: &PlanArgs) -> Result<()> {
     let mut out = std::io::stdout().lock();
     let _ = writeln!(
         out,
-        "{} on {} ({}x{} cells, {} m/cell): {} waypoints in {:.0} ms",
+        "{} on {} ({}x{} cells, {} m/cell{}): {} waypoints in {:.0} ms",
         request.planner.name(),
         name,
         map.width(),
         map.height(),
         map.resolution(),
+        outcome
+            .room_units
+            .map_or_else(String::new, |n| format!(", {n} rooms")),
         outcome.points.len(),
         outcome.plan_ms
     );

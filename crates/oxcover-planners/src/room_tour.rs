@@ -1,0 +1,276 @@
+//! Room by room: the parts of rooms a robot covers one at a time, and the
+//! order it visits them in.
+//!
+//! A room of a segmentation ([`oxcover_decomp::rooms`]) may fall apart for a
+//! robot (furniture or a narrow spot closes a passage in its C-space), so
+//! the places visited are **units**: 4-connected plannable cells of one
+//! room. Units smaller than a few tool footprints (slivers where a room
+//! boundary crosses the C-space) join the neighbouring unit they share the
+//! longest border with, so the tour does not stop for them.
+//!
+//! [`room_order`] orders the units from the start's unit by the time the
+//! robot needs between them ([`crate::TimeModel`]): geodesic distances over
+//! the coverage grid between each unit's anchor (its cell nearest to its
+//! centroid), then an open tour ([`crate::tour::open_tour`]: exact up to a
+//! dozen units, nearest neighbour with 2-opt and Or-opt beyond).
+
+use std::collections::BTreeMap;
+
+use oxcover_distance::Wavefront;
+use oxcover_grid::{Cell, Grid};
+
+use crate::problem::CoverageProblem;
+use crate::tour::open_tour;
+
+/// Units: connected plannable parts of rooms.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RoomUnits {
+    /// Unit of each cell, 1-based; 0 where the cell is not plannable.
+    pub labels: Grid<u32>,
+    /// Cells per unit (`sizes[u - 1]` for unit `u`).
+    pub sizes: Vec<usize>,
+}
+
+impl RoomUnits {
+    /// The units of `plannable` under the room labels `rooms` (0 = no
+    /// room: such cells form units of their own), units below `min_cells`
+    /// merged into a neighbour. Units are numbered in row-major order of
+    /// their first cell.
+    #[must_use]
+    pub fn new(plannable: &Grid<bool>, rooms: &Grid<u32>, min_cells: usize) -> Self {
+        let (w, h) = (plannable.width(), plannable.height());
+        let mut labels = Grid::new(w, h, 0u32);
+        let mut sizes = Vec::new();
+        let mut stack = Vec::new();
+        for seed in plannable.true_cells() {
+            if labels[seed] != 0 {
+                continue;
+            }
+            let id = sizes.len() as u32 + 1;
+            let room = rooms[seed];
+            labels[seed] = id;
+            stack.push(seed);
+            let mut n = 0;
+            while let Some(c) = stack.pop() {
+                n += 1;
+                for (_, nb) in plannable.neighbours4(c) {
+                    if plannable[nb] && labels[nb] == 0 && rooms[nb] == room {
+                        labels[nb] = id;
+                        stack.push(nb);
+                    }
+                }
+            }
+            sizes.push(n);
+        }
+        let mut units = Self { labels, sizes };
+        units.merge_small(min_cells);
+        units
+    }
+
+    /// Number of units.
+    #[must_use]
+    pub fn count(&self) -> usize {
+        self.sizes.len()
+    }
+
+    /// The cells of unit `u`.
+    #[must_use]
+    pub fn mask(&self, u: u32) -> Grid<bool> {
+        self.labels.map(|&l| l == u)
+    }
+
+    /// The unit of `cell` (0 when it is in none).
+    #[must_use]
+    pub fn unit_of(&self, cell: Cell) -> u32 {
+        self.labels.get(cell).copied().unwrap_or(0)
+    }
+
+    fn merge_small(&mut self, min_cells: usize) {
+        let n = self.sizes.len();
+        if n < 2 {
+            return;
+        }
+        // Border contacts between units, counted once: contacts[u - 1][v] =
+        // 4-adjacent cell pairs between unit u and unit v.
+        let mut contacts: Vec<BTreeMap<u32, usize>> = vec![BTreeMap::new(); n];
+        for c in self.labels.cells() {
+            let l = self.labels[c];
+            if l == 0 {
+                continue;
+            }
+            for (_, nb) in self.labels.neighbours4(c) {
+                let m = self.labels[nb];
+                if m != 0 && m != l {
+                    *contacts[l as usize - 1].entry(m).or_default() += 1;
+                }
+            }
+        }
+        let mut order: Vec<usize> = (0..n).filter(|&i| self.sizes[i] < min_cells).collect();
+        order.sort_by_key(|&i| (self.sizes[i], i));
+        let mut target: Vec<u32> = (1..=n as u32).collect();
+        let find = |t: &[u32], mut u: u32| {
+            while t[u as usize - 1] != u {
+                u = t[u as usize - 1];
+            }
+            u
+        };
+        for i in order {
+            let me = i as u32 + 1;
+            if find(&target, me) != me || self.sizes[i] >= min_cells {
+                continue;
+            }
+            let mut by_root: BTreeMap<u32, usize> = BTreeMap::new();
+            for (&v, &k) in &contacts[i] {
+                let r = find(&target, v);
+                if r != me {
+                    *by_root.entry(r).or_default() += k;
+                }
+            }
+            let best = by_root
+                .iter()
+                .max_by_key(|&(&u, &k)| (k, self.sizes[u as usize - 1], std::cmp::Reverse(u)));
+            if let Some((&to, _)) = best {
+                target[i] = to;
+                let moved = std::mem::take(&mut self.sizes[i]);
+                self.sizes[to as usize - 1] += moved;
+                let mine = std::mem::take(&mut contacts[i]);
+                for (v, k) in mine {
+                    *contacts[to as usize - 1].entry(v).or_default() += k;
+                }
+            }
+        }
+        // Relabel compactly in row-major order of first cells.
+        let mut fresh = vec![0u32; n + 1];
+        let mut sizes = Vec::new();
+        for c in self.labels.cells() {
+            let l = self.labels[c];
+            if l == 0 {
+                continue;
+            }
+            let r = find(&target, l) as usize;
+            if fresh[r] == 0 {
+                sizes.push(0);
+                fresh[r] = sizes.len() as u32;
+            }
+            let id = fresh[r];
+            sizes[id as usize - 1] += 1;
+            self.labels[c] = id;
+        }
+        self.sizes = sizes;
+    }
+
+    /// Each unit's anchor: its cell nearest to the unit's centroid.
+    #[must_use]
+    pub fn anchors(&self) -> Vec<Cell> {
+        let n = self.count();
+        let mut sum = vec![(0.0, 0.0); n];
+        for c in self.labels.cells() {
+            let l = self.labels[c] as usize;
+            if l > 0 {
+                sum[l - 1].0 += c.row as f64;
+                sum[l - 1].1 += c.col as f64;
+            }
+        }
+        let centre: Vec<(f64, f64)> = sum
+            .iter()
+            .zip(&self.sizes)
+            .map(|(s, &k)| (s.0 / k.max(1) as f64, s.1 / k.max(1) as f64))
+            .collect();
+        let mut best: Vec<(f64, Cell)> = vec![(f64::INFINITY, Cell::default()); n];
+        for c in self.labels.cells() {
+            let l = self.labels[c] as usize;
+            if l > 0 {
+                let d = (c.row as f64 - centre[l - 1].0).powi(2)
+                    + (c.col as f64 - centre[l - 1].1).powi(2);
+                if d < best[l - 1].0 {
+                    best[l - 1] = (d, c);
+                }
+            }
+        }
+        best.into_iter().map(|(_, c)| c).collect()
+    }
+}
+
+/// The order (unit numbers) in which to cover `units`, starting with the
+/// unit of the problem's start cell, minimising estimated transit time.
+#[must_use]
+pub fn room_order(problem: &CoverageProblem, units: &RoomUnits) -> Vec<u32> {
+    let n = units.count();
+    if n == 0 {
+        return Vec::new();
+    }
+    let coarse = problem.coarse();
+    let res = problem.frame().resolution();
+    let block = coarse.block_size() as f64;
+    let anchors = units.anchors();
+    // Each anchor's coverage cell, if it has a representative (tiny units
+    // may lie in a coverage cell represented elsewhere: same cell then).
+    let passable = coarse.passable();
+    let at: Vec<Cell> = anchors.iter().map(|&a| coarse.coarse_of(a)).collect();
+    let mut wave = Wavefront::with_moves(&passable, coarse.moves());
+    let mut dist = vec![f64::INFINITY; n * n];
+    for i in 0..n {
+        if !passable[at[i]] {
+            continue;
+        }
+        wave.propagate(&[at[i]]);
+        for j in 0..n {
+            if let Some(d) = wave.distance(at[j]) {
+                dist[i * n + j] = f64::from(d) * block * res;
+            }
+        }
+    }
+    let straight = |i: usize, j: usize| {
+        let (a, b) = (anchors[i], anchors[j]);
+        (a.row as f64 - b.row as f64).hypot(a.col as f64 - b.col as f64) * res
+    };
+    let v = problem.time().linear_speed;
+    let cost = |i: usize, j: usize| {
+        let d = dist[i * n + j].min(dist[j * n + i]);
+        // Geodesic where known, else a detour-sized guess.
+        let d = if d.is_finite() {
+            d.max(straight(i, j))
+        } else {
+            1.5 * straight(i, j)
+        };
+        d / v
+    };
+    let first = units.unit_of(problem.start_cell()).max(1) as usize - 1;
+    open_tour(n, first, &cost)
+        .into_iter()
+        .map(|i| i as u32 + 1)
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use oxcover_grid::DiscRobot;
+    use oxcover_grid::io::parse_ascii;
+
+    use crate::Start;
+
+    #[test]
+    fn units_split_rooms_and_merge_slivers() {
+        let (map, _) = parse_ascii("....#....\n.........\n....#....").unwrap();
+        let free = map.free_mask();
+        // Rooms: left (cols 0-3), right (cols 5-8), the door cell (1, 4) a
+        // room of its own, too small to stand alone.
+        let rooms = Grid::from_fn(9, 3, |c: Cell| match c.col {
+            0..=3 => 1,
+            4 => 3,
+            _ => 2,
+        });
+        let u = RoomUnits::new(&free, &rooms, 2);
+        assert_eq!(u.count(), 2);
+        assert_eq!(u.sizes, vec![13, 12]);
+        assert_eq!(u.unit_of(Cell::new(1, 4)), 1);
+        let p = CoverageProblem::new(
+            &map,
+            DiscRobot::cell_sized(1.0),
+            Start::Cell(Cell::new(0, 8)),
+        )
+        .unwrap();
+        assert_eq!(room_order(&p, &u), vec![2, 1]);
+    }
+}
