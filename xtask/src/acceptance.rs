@@ -37,6 +37,13 @@ const MIN_COVERAGE: f64 = 0.99;
 /// listed, neither passed nor failed.
 const QUADRATIC: [(&str, usize); 2] = [("full-dtc", 20_000), ("grid-cover", 50_000)];
 
+/// The coverage-cell count above which this task skips `planner`, if it
+/// is one of the [`QUADRATIC`] ones.
+#[must_use]
+pub fn quadratic_limit(planner: &str) -> Option<usize> {
+    QUADRATIC.iter().find(|q| q.0 == planner).map(|q| q.1)
+}
+
 /// A setting: its name, the maps and the radii (`None`: contract defaults).
 struct Setting {
     name: &'static str,

@@ -6,6 +6,8 @@
 //!   `docs/acceptance.md`.
 //! - [`bench`](mod@bench): run the criterion benchmarks and write their figures, with the
 //!   reference ratios and cells-touched counts, into `docs/benchmarks.md`.
+//! - [`efficiency`]: every complete planner, rooms on and off, on the real
+//!   floor plans, scored by estimated time; `docs/efficiency.md`.
 //! - [`maps`]: plan and score every real map in `../shared/maps`; `docs/maps.md`.
 //! - [`reproduce`]: the paper reproductions (`siamantas2010`,
 //!   `siamantas2010-tracking`, `zhang2008`, `pavlicek2002`, `floorplans`,
@@ -18,6 +20,7 @@
 
 pub mod acceptance;
 pub mod bench;
+pub mod efficiency;
 pub mod maps;
 pub mod plot;
 pub mod reproduce;

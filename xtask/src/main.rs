@@ -39,6 +39,9 @@ enum Task {
         #[arg(long)]
         planners: Option<String>,
     },
+    /// Every complete planner, rooms on and off, on the real floor plans,
+    /// scored by estimated time; write docs/efficiency.md.
+    Efficiency,
     /// Reproduce a paper's experiment: siamantas2010, siamantas2010-tracking, zhang2008, pavlicek2002, floorplans, lee2011, demir2018 or pavlicek2002-camera.
     Reproduce {
         /// Experiment name.
@@ -95,6 +98,7 @@ fn main() -> anyhow::Result<()> {
             xtask::acceptance::run(filter.as_deref(), planners.as_deref())
         }
         Task::Reproduce { name } => xtask::reproduce::run(&name),
+        Task::Efficiency => xtask::efficiency::run(),
         Task::Sweep {
             planners,
             size,

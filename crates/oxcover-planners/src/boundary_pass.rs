@@ -26,12 +26,18 @@ use oxcover_grid::footprint::{mark_covered, mark_disc};
 use oxcover_grid::{Cell, Coverability, Grid, MapFrame, Point, TOLERANCE_CELLS};
 
 use crate::error::{Error, Result};
+use crate::metre_path::PathBuilder;
 
 /// What the pass did.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct BoundaryRoute {
     /// Fine cells to append after the plan's last cell (not repeated here).
     pub cells: Vec<Cell>,
+    /// The route's waypoints (metres, map frame, after the last cell's
+    /// centre): the cells' centres for [`boundary_pass`]; for
+    /// [`boundary_tour`] each leg string-pulled over its cells, every
+    /// shortcut checked by exact traversal, coverage marked along it.
+    pub points: Vec<Point>,
     /// Coverable cells the plan left uncovered.
     pub pending: usize,
     /// Anchors chosen to cover them.
@@ -50,6 +56,48 @@ pub fn boundary_pass(
     points: &[Point],
     end: Cell,
 ) -> Result<BoundaryRoute> {
+    let Some(plan) = choose_anchors(frame, problem, points, end)? else {
+        return Ok(BoundaryRoute::default());
+    };
+    nearest_first(frame, problem, plan, end)
+}
+
+/// The same cells covered by a better tour: the anchors are ordered by an
+/// open tour over their straight-line distances (nearest neighbour, then
+/// 2-opt; [`crate::tour::open_tour`]) instead of nearest first, and each leg
+/// is a shortest route straightened. Used when planning room by room, where
+/// the pass runs per room; the map-wide pass keeps the order above.
+///
+/// # Errors
+/// As [`boundary_pass`].
+pub fn boundary_tour(
+    frame: &MapFrame,
+    problem: &Coverability,
+    points: &[Point],
+    end: Cell,
+) -> Result<BoundaryRoute> {
+    let Some(plan) = choose_anchors(frame, problem, points, end)? else {
+        return Ok(BoundaryRoute::default());
+    };
+    toured(frame, problem, plan, end)
+}
+
+/// Anchors chosen for the pending cells.
+struct AnchorPlan {
+    covered: Grid<bool>,
+    pending: usize,
+    anchor_of: Grid<u32>,
+    /// Pending cells each anchor covers, by anchor id - 1.
+    targets: Vec<Vec<Cell>>,
+}
+
+/// Pending cells and their anchors; `None` when nothing is pending.
+fn choose_anchors(
+    frame: &MapFrame,
+    problem: &Coverability,
+    points: &[Point],
+    end: Cell,
+) -> Result<Option<AnchorPlan>> {
     let plannable = &problem.reachable;
     if !plannable.is_set(end) {
         return Err(Error::Internal(format!(
@@ -65,11 +113,7 @@ pub fn boundary_pass(
         .filter(|&c| !covered[c])
         .collect();
     if pending.is_empty() {
-        return Ok(BoundaryRoute {
-            cells: Vec::new(),
-            pending: 0,
-            anchors: 0,
-        });
+        return Ok(None);
     }
 
     let reach = problem.robot.tool_cells(frame.resolution()) + TOLERANCE_CELLS;
@@ -120,6 +164,29 @@ pub fn boundary_pass(
             targets[anchor_of[a] as usize - 1].extend(cells);
         }
     }
+    Ok(Some(AnchorPlan {
+        covered,
+        pending: pending.len(),
+        anchor_of,
+        targets,
+    }))
+}
+
+/// Visits the anchors nearest first (by shortest route) from `end`.
+fn nearest_first(
+    frame: &MapFrame,
+    problem: &Coverability,
+    plan: AnchorPlan,
+    end: Cell,
+) -> Result<BoundaryRoute> {
+    let AnchorPlan {
+        mut covered,
+        pending,
+        anchor_of,
+        targets,
+    } = plan;
+    let plannable = &problem.reachable;
+    let tool = problem.robot.tool_radius;
     let anchors = targets.len();
 
     let mut wave = Wavefront::new(plannable);
@@ -149,9 +216,76 @@ pub fn boundary_pass(
         here = a;
     }
     Ok(BoundaryRoute {
+        points: route.iter().map(|&c| frame.cell_center(c)).collect(),
         cells: route,
-        pending: pending.len(),
+        pending,
         anchors,
+    })
+}
+
+/// Visits the anchors in the order of an open tour from `end`.
+fn toured(
+    frame: &MapFrame,
+    problem: &Coverability,
+    plan: AnchorPlan,
+    end: Cell,
+) -> Result<BoundaryRoute> {
+    let AnchorPlan {
+        mut covered,
+        pending,
+        anchor_of,
+        targets,
+    } = plan;
+    let plannable = &problem.reachable;
+    let tool = problem.robot.tool_radius;
+    let mut cells_of: Vec<Cell> = vec![Cell::default(); targets.len()];
+    for c in anchor_of.cells() {
+        let id = anchor_of[c] as usize;
+        if id > 0 {
+            cells_of[id - 1] = c;
+        }
+    }
+    // Place 0 is the start; places 1..=n the anchors.
+    let mut places = vec![end];
+    places.extend(cells_of.iter().copied());
+    let dist = |a: usize, b: usize| {
+        let (p, q) = (places[a], places[b]);
+        let (dr, dc) = (p.row as f64 - q.row as f64, p.col as f64 - q.col as f64);
+        (dr * dr + dc * dc).sqrt()
+    };
+    let order = crate::tour::open_tour(places.len(), 0, &dist);
+    let mut wave = Wavefront::new(plannable);
+    let mut route = Vec::new();
+    let mut path = PathBuilder::new(plannable, end);
+    let mut here = end;
+    for &k in order.iter().skip(1) {
+        let id = k - 1;
+        if targets[id].iter().all(|&v| covered[v]) {
+            continue;
+        }
+        let a = cells_of[id];
+        let near = cidt(&mut wave, &[here], |c| c == a)
+            .ok_or_else(|| Error::Internal(format!("boundary anchor {a:?} unreachable")))?;
+        let seg = wave
+            .retrace(near.first())
+            .ok_or_else(|| Error::Internal("boundary pass retrace failed".into()))?;
+        let from = path.points().len() - 1;
+        path.follow(&seg[1..], f64::INFINITY);
+        let leg: Vec<Point> = path.points()[from..]
+            .iter()
+            .map(|p| frame.position(p.y - 0.5, p.x - 0.5))
+            .collect();
+        mark_covered(frame, &leg, tool, &mut covered);
+        route.extend_from_slice(&seg[1..]);
+        here = a;
+    }
+    let mut points = path.into_metres(frame);
+    points.remove(0);
+    Ok(BoundaryRoute {
+        cells: route,
+        points,
+        pending,
+        anchors: targets.len(),
     })
 }
 

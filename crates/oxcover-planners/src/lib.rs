@@ -19,6 +19,7 @@
 //! | `boustrophedon` | [`sweep`] | Choset & Pignon 1997 (Pavlíček 2002) | yes |
 //! | `trapezoidal` | [`sweep`] | slab decomposition (Pavlíček 2002, Fig. 8) | yes |
 //! | `border-expansion` | [`border_expansion`] | Pavlicek et al. 2002 | yes |
+//! | `lanes` | [`lanes`] | edge loops + straight lanes at each region's fastest angle, ordered by estimated time (issue 15) | yes |
 //! | `smooth` | [`smooth`] | Lee et al. 2011: spiral, wall following, CFCIDT, PSO-tuned Bézier virtual-wall paths | yes |
 //!
 //! The online sensor-based planner of Demir 2018 (`sensor-bcd`) needs a
@@ -51,6 +52,7 @@ pub mod dtc;
 pub mod error;
 pub mod full_dtc;
 pub mod grid_cover;
+pub mod lanes;
 mod metre_path;
 pub mod optimal;
 pub mod planner;
@@ -68,7 +70,7 @@ mod testing;
 pub mod time;
 pub mod tour;
 
-pub use boundary_pass::{BoundaryRoute, boundary_pass};
+pub use boundary_pass::{BoundaryRoute, boundary_pass, boundary_tour};
 pub use error::{Error, Result};
 pub use planner::{Planner, PlannerOptions, steps};
 pub use problem::{

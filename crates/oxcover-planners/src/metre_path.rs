@@ -58,6 +58,11 @@ impl<'a> PathBuilder<'a> {
             && self.clearance.as_ref().is_none_or(|c| c.segment(a, b))
     }
 
+    /// The mask the path keeps to.
+    pub(crate) fn mask(&self) -> &'a Grid<bool> {
+        self.plannable
+    }
+
     /// The current end point.
     pub(crate) fn last(&self) -> GridPoint {
         self.points[self.points.len() - 1]
@@ -94,7 +99,7 @@ impl<'a> PathBuilder<'a> {
             )));
         };
         let route = self.route(a, b)?;
-        self.straighten(&route, Some(q), f64::INFINITY);
+        self.straighten(&route, Some(q), |_, _, _| true);
         Ok(())
     }
 
@@ -106,36 +111,63 @@ impl<'a> PathBuilder<'a> {
     }
 
     /// Follows the 4-connected cell walk `cells` (its first cell is where the
-    /// path is, or next to it), ending at `end` if given, with shortcuts that
+    /// path is, or next to it), with shortcuts that
     /// stay within `tolerance` cells of the skipped cell centres.
     pub(crate) fn follow(&mut self, cells: &[Cell], tolerance: f64) {
-        self.straighten(cells, None, tolerance);
+        self.straighten(cells, None, |a, b, skipped| {
+            tolerance.is_infinite()
+                || skipped
+                    .iter()
+                    .all(|&m| segment_distance(a, b, m) <= tolerance)
+        });
+    }
+
+    /// Follows the points `targets` (each piece from the path's end to the
+    /// next target, and between consecutive targets, must be clear: the
+    /// caller checks), with the clear shortcuts `keep(from, to, skipped
+    /// targets)` accepts.
+    pub(crate) fn follow_points(
+        &mut self,
+        targets: Vec<GridPoint>,
+        keep: impl Fn(GridPoint, GridPoint, &[GridPoint]) -> bool,
+    ) {
+        self.straighten_points(targets, keep);
     }
 
     /// Appends the route's cell centres (then `end`), skipping those a clear
-    /// straight shortcut makes unnecessary and that lie within `tolerance` of it.
+    /// straight shortcut makes unnecessary and that `keep` accepts skipping.
     ///
     /// From each anchor the shortcut's far end is found by galloping (1, 2, 4,
     /// … targets ahead) and then bisecting between the last good and the first
-    /// bad end. Every accepted shortcut is checked (clear, and within
-    /// `tolerance` of every skipped centre), so the result is always valid;
+    /// bad end. Every accepted shortcut is checked (clear, and accepted by
+    /// `keep`), so the result is always valid;
     /// the search costs O(log n) checks per shortcut instead of O(n).
-    fn straighten(&mut self, cells: &[Cell], end: Option<GridPoint>, tolerance: f64) {
+    fn straighten(
+        &mut self,
+        cells: &[Cell],
+        end: Option<GridPoint>,
+        keep: impl Fn(GridPoint, GridPoint, &[GridPoint]) -> bool,
+    ) {
         let mut targets: Vec<GridPoint> = cells.iter().map(|&c| cell_center(c)).collect();
         if let Some(e) = end {
             targets.push(e);
         }
+        self.straighten_points(targets, keep);
+    }
+
+    /// [`Self::straighten`] over explicit points.
+    fn straighten_points(
+        &mut self,
+        targets: Vec<GridPoint>,
+        keep: impl Fn(GridPoint, GridPoint, &[GridPoint]) -> bool,
+    ) {
         let mut anchor = self.last();
         let mut i = 0;
         while i < targets.len() {
             // Can the path go straight from `anchor` to `targets[j]`, skipping
             // `targets[i..j]`?
             let ok = |j: usize| {
-                self.clear(anchor, targets[j])
-                    && (tolerance.is_infinite()
-                        || targets[i..j]
-                            .iter()
-                            .all(|&m| segment_distance(anchor, targets[j], m) <= tolerance))
+                self.clear(anchor, targets[j]) && keep(anchor, targets[j], &targets[i..j])
             };
             // `good` passes (or is `i`, always taken); `bad` fails or is past the end.
             let (mut good, mut bad) = (i, targets.len());
@@ -186,7 +218,7 @@ impl<'a> PathBuilder<'a> {
                 .wave
                 .retrace(near.first())
                 .ok_or_else(|| Error::Internal("leftover retrace failed".into()))?;
-            self.straighten(&route[1..], None, f64::INFINITY);
+            self.straighten(&route[1..], None, |_, _, _| true);
         }
     }
 

@@ -30,7 +30,7 @@ use oxcover_grid::{
     TOLERANCE_CELLS, admissible, components4, coverable_cells, reachable,
 };
 
-use crate::boundary_pass::{BoundaryRoute, boundary_pass};
+use crate::boundary_pass::{BoundaryRoute, boundary_pass, boundary_tour};
 use crate::error::{Error, Result};
 use crate::metre_path::PathBuilder;
 use crate::time::TimeModel;
@@ -96,6 +96,8 @@ pub struct CoverageProblem {
     start_point: Option<Point>,
     /// Speeds planners score their choices with.
     time: TimeModel,
+    /// This problem's cell (0, 0) in the original map.
+    offset: Cell,
 }
 
 impl CoverageProblem {
@@ -134,6 +136,7 @@ impl CoverageProblem {
             tool_cells: robot.tool_cells(frame.resolution()),
             start_point,
             time: TimeModel::default(),
+            offset: Cell::new(0, 0),
         })
     }
 
@@ -155,12 +158,19 @@ impl CoverageProblem {
     /// inside `mask` and 4-connected to `start` there; coverable cells are
     /// this problem's coverable cells the tool reaches from them.
     ///
+    /// The new problem is cropped to the region's bounding box, widened by
+    /// the tool's reach: its grids, frame and cells are the crop's
+    /// ([`CoverageProblem::offset`] gives the crop's first cell in the
+    /// original map; metre positions are the same in both frames). Work on
+    /// a room thus costs the room's size, not the map's.
+    ///
     /// # Errors
     /// [`Error::BadParameter`] when `mask` is not the map's size or `start`
     /// is not a plannable cell inside it.
     pub fn restricted(&self, mask: &Grid<bool>, start: Cell) -> Result<Self> {
         let plannable = self.plannable();
-        if (mask.width(), mask.height()) != (plannable.width(), plannable.height()) {
+        let (w, h) = (plannable.width(), plannable.height());
+        if (mask.width(), mask.height()) != (w, h) {
             return Err(Error::BadParameter {
                 name: "region mask",
                 value: format!("{}x{}", mask.width(), mask.height()),
@@ -174,25 +184,63 @@ impl CoverageProblem {
                 expected: "a plannable cell inside the region",
             });
         }
-        let inside = Grid::from_fn(mask.width(), mask.height(), |c| plannable[c] && mask[c]);
-        let reach = reachable(&inside, start);
-        let coverable = coverable_cells(&self.cells.coverable, &reach, self.tool_cells);
+        let (mut r0, mut r1, mut c0, mut c1) = (start.row, start.row, start.col, start.col);
+        for c in mask.true_cells() {
+            if plannable[c] {
+                r0 = r0.min(c.row);
+                r1 = r1.max(c.row);
+                c0 = c0.min(c.col);
+                c1 = c1.max(c.col);
+            }
+        }
+        let margin = self.tool_cells.ceil().min((w + h) as f64) as usize + 2;
+        let (r0, c0) = (r0.saturating_sub(margin), c0.saturating_sub(margin));
+        let (r1, c1) = ((r1 + 1 + margin).min(h), (c1 + 1 + margin).min(w));
+        let (cw, ch) = (c1 - c0, r1 - r0);
+        let at = |c: Cell| Cell::new(c.row + r0, c.col + c0);
+        let inside = Grid::from_fn(cw, ch, |c| plannable[at(c)] && mask[at(c)]);
+        let local_start = Cell::new(start.row - r0, start.col - c0);
+        let reach = reachable(&inside, local_start);
+        let parent_coverable = Grid::from_fn(cw, ch, |c| self.cells.coverable[at(c)]);
+        let coverable = coverable_cells(&parent_coverable, &reach, self.tool_cells);
         let cells = Coverability {
             robot: self.cells.robot,
-            admissible: self.cells.admissible.clone(),
-            start,
+            admissible: Grid::from_fn(cw, ch, |c| self.cells.admissible[at(c)]),
+            start: local_start,
             reachable: reach,
             coverable,
         };
+        let res = self.frame.resolution();
+        let o = self.frame.origin();
+        let frame = MapFrame::new(
+            cw,
+            ch,
+            res,
+            Point::new(o.x + c0 as f64 * res, o.y + (h - r1) as f64 * res),
+        );
         let coarse = CoarseGrid::new(&cells.reachable, self.coarse.block_size());
         Ok(Self {
-            frame: self.frame,
+            frame,
             cells,
             coarse,
             tool_cells: self.tool_cells,
             start_point: None,
             time: self.time,
+            offset: Cell::new(self.offset.row + r0, self.offset.col + c0),
         })
+    }
+
+    /// Where this problem's cell (0, 0) lies in the original map (not (0, 0)
+    /// for a [`CoverageProblem::restricted`] crop).
+    #[must_use]
+    pub fn offset(&self) -> Cell {
+        self.offset
+    }
+
+    /// This problem's `cell` in the original map's cells.
+    #[must_use]
+    pub fn to_map_cell(&self, cell: Cell) -> Cell {
+        Cell::new(cell.row + self.offset.row, cell.col + self.offset.col)
     }
 
     /// What a planner sees, with `seed` for randomised planners.
@@ -200,6 +248,8 @@ impl CoverageProblem {
     pub fn input(&self, seed: u64) -> PlannerInput<'_> {
         PlannerInput {
             plannable: &self.cells.reachable,
+            coverable: &self.cells.coverable,
+            admissible: &self.cells.admissible,
             coarse: &self.coarse,
             start: self.coarse.coarse_of(self.cells.start),
             seed,
@@ -324,6 +374,15 @@ impl CoverageProblem {
     pub fn boundary_pass(&self, points: &[Point], end: Cell) -> Result<BoundaryRoute> {
         boundary_pass(&self.frame, &self.cells, points, end)
     }
+
+    /// The route covering what `points` leaves uncovered, from the plannable
+    /// cell `end`, as a straightened tour ([`boundary_tour`]).
+    ///
+    /// # Errors
+    /// As [`boundary_pass`].
+    pub fn boundary_tour(&self, points: &[Point], end: Cell) -> Result<BoundaryRoute> {
+        boundary_tour(&self.frame, &self.cells, points, end)
+    }
 }
 
 /// A way between two places ([`CoverageProblem::transit`]).
@@ -364,6 +423,12 @@ impl PlanOutput {
 pub struct PlannerInput<'a> {
     /// Fine cells the robot may occupy (admissible and reachable from the start).
     pub plannable: &'a Grid<bool>,
+    /// Fine cells to cover (the contract's coverable cells: free, within the
+    /// tool radius of a plannable cell).
+    pub coverable: &'a Grid<bool>,
+    /// Every admissible cell of the map (plannable or not: a region's
+    /// neighbours across a room cut are admissible, a wall is not).
+    pub admissible: &'a Grid<bool>,
     /// The coverage grid built from `plannable`.
     pub coarse: &'a CoarseGrid,
     /// The start coverage cell (it has a representative).
@@ -474,6 +539,17 @@ mod tests {
         let r = p.restricted(&left, Cell::new(1, 1)).unwrap();
         assert_eq!(r.plannable().count_true(), 12);
         assert_eq!(r.cells().coverable.count_true(), 12);
+        // Cropped to the region and its margin; the same metres in both frames.
+        assert_eq!((r.frame().width(), r.offset()), (7, Cell::new(0, 0)));
+        let right = Grid::from_fn(9, 3, |c: Cell| c.col > 4);
+        let q = p.restricted(&right, Cell::new(0, 8)).unwrap();
+        assert_eq!(q.offset(), Cell::new(0, 2));
+        let local = q.start_cell();
+        assert_eq!(q.to_map_cell(local), Cell::new(0, 8));
+        assert_eq!(
+            q.frame().cell_center(local),
+            p.frame().cell_center(Cell::new(0, 8))
+        );
         assert!(p.restricted(&left, Cell::new(1, 6)).is_err());
         let small = Grid::new(2, 2, true);
         assert!(p.restricted(&small, Cell::new(0, 0)).is_err());

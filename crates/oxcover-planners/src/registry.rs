@@ -15,6 +15,7 @@ use crate::dtc::Dtc;
 use crate::error::{Error, Result};
 use crate::full_dtc::FullDtc;
 use crate::grid_cover::GridCover;
+use crate::lanes::Lanes;
 use crate::optimal::Optimal;
 use crate::planner::{Planner, PlannerOptions};
 use crate::rect_priority::RectPriority;
@@ -48,6 +49,7 @@ fn entries() -> &'static [Entry] {
     static TRAPEZOIDAL: Sweep = Sweep::new(Decomposition::Trapezoidal);
     static BORDER: BorderExpansionPlanner = BorderExpansionPlanner;
     static SMOOTH: Smooth = Smooth::new();
+    static LANES: Lanes = Lanes::new();
     /// An entry taking no option.
     const fn plain(
         planner: &'static dyn Planner,
@@ -59,7 +61,7 @@ fn entries() -> &'static [Entry] {
             configure,
         }
     }
-    static ALL: [Entry; 12] = [
+    static ALL: [Entry; 13] = [
         plain(&DTC, |_| Arc::new(Dtc::new())),
         plain(&FULL_DTC, |_| Arc::new(FullDtc::new())),
         plain(&GRID_COVER, |_| Arc::new(GridCover::new())),
@@ -80,6 +82,14 @@ fn entries() -> &'static [Entry] {
         },
         plain(&BORDER, |_| Arc::new(BorderExpansionPlanner)),
         plain(&SMOOTH, |_| Arc::new(Smooth::new())),
+        Entry {
+            planner: &LANES,
+            sweeps: true,
+            configure: |o| {
+                let l = Lanes::new();
+                Arc::new(o.sweep_angle_deg.map_or(l, |a| l.at_angle(a)))
+            },
+        },
     ];
     &ALL
 }
@@ -145,7 +155,7 @@ mod tests {
             let built = build(p.name(), &PlannerOptions::new()).unwrap();
             assert_eq!(built.name(), p.name());
         }
-        assert_eq!(seen.len(), 12);
+        assert_eq!(seen.len(), 13);
     }
 
     #[test]
@@ -157,7 +167,7 @@ mod tests {
             .map(|e| e.to_string())
             .unwrap_or_default();
         assert!(
-            e.contains("only with --planner boustrophedon or trapezoidal"),
+            e.contains("only with --planner boustrophedon or trapezoidal or lanes"),
             "{e}"
         );
         assert!(matches!(find("nope"), Err(Error::UnknownPlanner(_))));

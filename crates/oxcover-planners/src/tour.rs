@@ -4,9 +4,10 @@
 //!
 //! - Up to [`EXACT_LIMIT`] places: exact, by Held–Karp dynamic programming
 //!   over subsets (O(2ⁿ n²)).
-//! - Beyond: nearest neighbour, then 2-opt (reverse a stretch) and Or-opt
-//!   (move a stretch of one to three places elsewhere) until no move
-//!   improves the tour by more than a relative 1e-12.
+//! - Beyond: nearest neighbour, then 2-opt (reverse a stretch) and, up to
+//!   [`OR_OPT_LIMIT`] places, Or-opt (move a stretch of one to three places
+//!   elsewhere), until no move improves the tour by more than a relative
+//!   1e-12 or [`ROUNDS`] rounds have run.
 //!
 //! Costs may be asymmetric for Held–Karp; the local search assumes
 //! symmetric costs (2-opt reverses stretches). Ties break towards lower
@@ -14,6 +15,10 @@
 
 /// Largest number of places ordered exactly.
 pub const EXACT_LIMIT: usize = 13;
+/// Largest number of places Or-opt runs on (its rounds cost O(n³)).
+pub const OR_OPT_LIMIT: usize = 120;
+/// Most improvement rounds.
+pub const ROUNDS: usize = 30;
 
 /// An open tour over places `0..n` starting at `start` (which must be
 /// `< n`), every place exactly once, minimising the sum of `cost(a, b)` over
@@ -109,7 +114,7 @@ fn nearest_neighbour(n: usize, start: usize, cost: &dyn Fn(usize, usize) -> f64)
 fn improve(tour: &mut Vec<usize>, cost: &dyn Fn(usize, usize) -> f64) {
     let n = tour.len();
     let eps = |total: f64| 1e-12 * total.abs().max(1.0);
-    for _round in 0..100 {
+    for _round in 0..ROUNDS {
         let mut better = false;
         // 2-opt: reverse tour[i..=j] (i ≥ 1).
         for i in 1..n - 1 {
@@ -133,7 +138,8 @@ fn improve(tour: &mut Vec<usize>, cost: &dyn Fn(usize, usize) -> f64) {
             }
         }
         // Or-opt: move a stretch of 1..=3 places to another gap.
-        for len in 1..=3 {
+        let longest = if n <= OR_OPT_LIMIT { 3 } else { 0 };
+        for len in 1..=longest {
             let mut i = 1;
             while i + len <= n {
                 let total = tour_cost(tour, cost);

@@ -354,7 +354,13 @@ fn plan_region(
         .unwrap_or(problem.start_cell());
     let mut points = raw.clone();
     let boundary = if request.boundary_pass {
-        let route = problem.boundary_pass(&raw, end)?;
+        // Room by room, the pass is a straightened tour; the map-wide pass
+        // keeps its nearest-first order (the papers' experiments).
+        let route = if request.rooms {
+            problem.boundary_tour(&raw, end)?
+        } else {
+            problem.boundary_pass(&raw, end)?
+        };
         let mut extra = Vec::new();
         // The pass starts from `end`'s centre; a metre plan may stop elsewhere
         // in that cell, so go to the centre first (a move inside one cell).
@@ -363,7 +369,15 @@ fn plan_region(
             extra.push(end);
         }
         extra.extend_from_slice(&route.cells);
-        points.extend(cells_to_points(frame, &extra));
+        if request.rooms {
+            if off_centre && route.pending > 0 {
+                points.push(frame.cell_center(end));
+            }
+            points.extend(route.points.iter().copied());
+        } else {
+            // Collinear cells merged, as every cell path is written.
+            points.extend(cells_to_points(frame, &extra));
+        }
         cells.extend(extra);
         Some(route)
     } else {
@@ -443,7 +457,11 @@ fn plan_rooms(
             (entry, prefix)
         };
         let sub = problem.restricted(&units.mask(u), entry)?;
-        let region = plan_region(&sub, request, prefix)?;
+        let mut region = plan_region(&sub, request, prefix)?;
+        for c in &mut region.cells {
+            *c = sub.to_map_cell(*c);
+        }
+        region.end = sub.to_map_cell(region.end);
         boundary_length_m += polyline_length(&region.points) - polyline_length(&region.raw);
         for p in &region.points {
             if points.last() != Some(p) {
@@ -455,12 +473,14 @@ fn plan_rooms(
         if let Some(b) = region.boundary {
             let total = boundary.get_or_insert(BoundaryRoute {
                 cells: Vec::new(),
+                points: Vec::new(),
                 pending: 0,
                 anchors: 0,
             });
             total.pending += b.pending;
             total.anchors += b.anchors;
             total.cells.extend(b.cells);
+            total.points.extend(b.points);
         }
         here = region.end;
     }

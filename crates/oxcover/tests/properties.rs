@@ -116,6 +116,7 @@ proptest! {
             ("dtc", true), ("grid-cover", true), ("rect-priority", false),
             ("stc", false), ("spiral-stc", true), ("bsa", true),
             ("boustrophedon", true), ("trapezoidal", true), ("border-expansion", true),
+            ("lanes", true),
         ] {
             check(&map, robot, name, complete)?;
         }

@@ -1,0 +1,985 @@
+//! `lanes`: the pattern real cleaning robots drive, planned for time.
+//!
+//! On its region (the whole map, or one room when the pipeline plans room by
+//! room) the planner lays out two kinds of work and then orders them:
+//!
+//! 1. **Edge loops.** Every contour of the plannable cells (the robot's
+//!    C-space: walls and every piece of furniture) is traced (Moore
+//!    neighbour tracing) and driven once. Its waypoints sit in the boundary
+//!    cells, pushed 0.45 of a cell towards the wall (still inside the cell,
+//!    so the tool reaches as far into the strip along the wall as the robot
+//!    may go), and the staircase is straightened within half a tool radius
+//!    (¼ to 1 cell). Where the region borders another room's plannable
+//!    cells (a room cut, not a wall) the contour opens into runs along the
+//!    walls only.
+//! 2. **Lanes.** Straight metre segments, one tool width apart (less the
+//!    sampling margin of the contract's coverage test), clipped to the part
+//!    of the C-space at least a tool radius from any wall (the loops cover
+//!    the rest): a lane ends where the wall is. Lanes on
+//!    neighbouring lines whose extents overlap, one to one, form a **chain**
+//!    (a boustrophedon cell) driven back and forth with one turn at each end.
+//!    The lane direction is the region's own: every 15° and the dominant
+//!    wall direction are tried, and the one with the least estimated time
+//!    ([`crate::TimeModel`]: lane and link length over v, π per link over w,
+//!    a turn and a lane spacing per chain, three times the time of lanes for
+//!    the lane-mask area the lanes leave) wins; another angle must beat the
+//!    wall directions by 10 %.
+//!
+//! **Order.** Loops (entered and left at one of eight points) and chains
+//! (entered at one of four corners, left at the opposite end) are ordered
+//! by a small generalised TSP: nearest neighbour over every entry, 2-opt on
+//! the order (a reversed stretch drives its chains backwards), then an
+//! exact dynamic programme choosing every node's entry for that order. All
+//! costs are estimated seconds.
+//!
+//! Links that are not straight and clear take the shortest route,
+//! straightened ([`crate::metre_path`]); every segment is checked by exact
+//! traversal, so the path never leaves the plannable cells. A last pass
+//! visits any coverage cell still uncovered, nearest first, so the plan is
+//! complete on the coverage grid like every complete planner; the
+//! pipeline's boundary pass covers the cells of the wall strip that the
+//! straightened loops pass just out of reach.
+//!
+//! Why not cover that strip in the loop itself: with the contract's cell
+//! model (a pose is admissible when its cell's centre clears the walls by
+//! the robot radius; a cell is covered when its centre is within the tool
+//! radius), the free cells next to a ragged wall or around an obstacle's
+//! corner are within reach of only a few boundary cells each, so a loop
+//! that covers all of them follows the pixel staircase and turns at almost
+//! every cell. Measured on the ipa floor plans, that costs more time than
+//! the boundary pass it saves (see `docs/efficiency.md`).
+
+use std::f64::consts::PI;
+
+use oxcover_grid::edt::center_distance_sq;
+use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear, segment_distance};
+use oxcover_grid::{Cell, Grid};
+
+use crate::error::{Error, Result};
+use crate::metre_path::PathBuilder;
+use crate::planner::{Planner, PlannerOptions};
+use crate::problem::{PlanOutput, PlannerInput};
+use crate::time::TimeModel;
+
+/// The `lanes` planner.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Lanes {
+    /// Fixed lane angle in degrees (map frame); `None` = fastest per region.
+    angle_deg: Option<f64>,
+}
+
+impl Lanes {
+    /// Lanes at each region's fastest angle.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self { angle_deg: None }
+    }
+
+    /// Lanes at a fixed angle (degrees, counter-clockwise from the map's x axis).
+    #[must_use]
+    pub const fn at_angle(mut self, deg: f64) -> Self {
+        self.angle_deg = Some(deg);
+        self
+    }
+}
+
+impl Planner for Lanes {
+    fn name(&self) -> &'static str {
+        "lanes"
+    }
+
+    fn complete(&self) -> bool {
+        true
+    }
+
+    fn summary(&self) -> &'static str {
+        "edge loops along walls and furniture, then straight lanes at the region's fastest angle, ordered by estimated time"
+    }
+
+    fn options(&self) -> PlannerOptions {
+        let mut o = PlannerOptions::new();
+        o.sweep_angle_deg = self.angle_deg;
+        o
+    }
+
+    fn plan(&self, input: &PlannerInput<'_>) -> Result<PlanOutput> {
+        let plan = plan_lanes(input, self.angle_deg)?;
+        Ok(PlanOutput::Metres(plan))
+    }
+}
+
+/// Factor by which an angle must beat the wall directions to be chosen.
+const WALL_PREFERENCE: f64 = 1.1;
+/// Most nodes the order's 2-opt runs on.
+const TWO_OPT_LIMIT: usize = 600;
+/// Entry points tried per loop.
+const LOOP_ENTRIES: usize = 8;
+
+fn plan_lanes(
+    input: &PlannerInput<'_>,
+    angle_deg: Option<f64>,
+) -> Result<Vec<oxcover_grid::Point>> {
+    let plannable = input.plannable;
+    let start = input
+        .coarse
+        .representative(input.start)
+        .ok_or_else(|| Error::Internal("start coverage cell has no representative".into()))?;
+    let time = input.time;
+    let tool = input.tool_cells.max(0.5);
+    let loops = edge_loops(plannable, input.admissible);
+    // The C-space at least half a tool radius inside its boundary.
+    // Walls only: a room cut is no wall, lanes run up to it.
+    let blocked = input.admissible.map(|&a| !a);
+    let d2 = center_distance_sq(&blocked);
+    let inset = 1.0 + tool;
+    let (w, h) = (plannable.width(), plannable.height());
+    let lane_mask = Grid::from_fn(w, h, |c| {
+        // Beyond the grid counts as blocked too.
+        let edge = (c.row + 1).min(c.col + 1).min(h - c.row).min(w - c.col) as f64;
+        plannable[c] && (d2[c] as f64) >= inset * inset && edge >= inset
+    });
+    // Lines one tool width apart, less the margin of the contract's samples
+    // (a quarter of a cell apart along the path).
+    // A tool narrower than a cell: lanes through the cell centres, one row
+    // or column apart, along the grid's axes only.
+    let narrow = tool < 1.0;
+    let spacing = if narrow {
+        1.0
+    } else {
+        2.0 * (tool * tool - 1.0 / 64.0).sqrt() * 0.999
+    };
+    let res_m = input.frame.resolution();
+    let cell_time = TimeModel {
+        linear_speed: time.linear_speed / res_m,
+        angular_speed: time.angular_speed,
+    };
+    let wall = wall_angle(&loops);
+    let candidates: Vec<f64> = match angle_deg {
+        // Grid rows grow downwards: a map-frame angle a is -a here.
+        Some(a) => vec![-a.to_radians()],
+        None if narrow => vec![0.0, PI / 2.0],
+        None => {
+            let mut v = vec![wall, wall + PI / 2.0];
+            v.extend((0..12).map(|k| f64::from(k) * PI / 12.0));
+            v
+        }
+    };
+    let mask_area = lane_mask.count_true() as f64;
+    let mut best: Option<(f64, Vec<Chain>)> = None;
+    for (i, &theta) in candidates.iter().enumerate() {
+        let (chains, step) = chains_at(plannable, &lane_mask, theta, spacing);
+        let mut cost = chains
+            .iter()
+            .map(|c| c.time(&cell_time, spacing))
+            .sum::<f64>();
+        // What the lanes leave of the lane mask (corners cut by slanted
+        // lane ends) is covered by detours, about three times slower.
+        let lanes: f64 = chains.iter().flat_map(|c| &c.lanes).map(Lane::length).sum();
+        let uncovered = (mask_area - lanes * step.max(1.0)).max(0.0);
+        cost += 3.0 * cell_time.time(uncovered / spacing, 0.0);
+        // Near-ties go to the wall directions, tried first.
+        if i >= 2 {
+            cost *= WALL_PREFERENCE;
+        }
+        if best.as_ref().is_none_or(|b| cost < b.0) {
+            best = Some((cost, chains));
+        }
+    }
+    let chains = best.map(|b| b.1).unwrap_or_default();
+
+    let mut nodes: Vec<Node> = Vec::new();
+    for l in &loops {
+        nodes.push(Node::Loop(l));
+    }
+    for c in &chains {
+        nodes.push(Node::Chain(c));
+    }
+    let order = order_nodes(&nodes, cell_center(start), &cell_time);
+    let loop_tolerance = (tool / 2.0).clamp(LOOP_TOLERANCE.0, LOOP_TOLERANCE.1);
+
+    let mut path = PathBuilder::new(plannable, start);
+    for (node, option) in order {
+        match nodes[node] {
+            Node::Loop(l) => drive_loop(&mut path, l, option, loop_tolerance)?,
+            Node::Chain(c) => drive_chain(&mut path, c, option)?,
+        }
+    }
+    path.cover_leftovers(input.coarse, input.visit_radius())?;
+    Ok(path.into_metres(&input.frame))
+}
+
+// ---------------------------------------------------------------- loops
+
+/// A traced contour, or the part of one that runs along walls: 4-connected
+/// pieces of boundary cells (a diagonal step squeezing between two blocked
+/// cells starts a new piece). A closed loop is driven round from any of its
+/// entries back to it; an open run (a contour cut where the region borders
+/// another room's plannable cells) from one end to the other.
+#[derive(Clone, Debug, PartialEq)]
+struct EdgeLoop {
+    pieces: Vec<Vec<Cell>>,
+    closed: bool,
+}
+
+impl EdgeLoop {
+    #[cfg(test)]
+    fn cells(&self) -> impl Iterator<Item = Cell> + '_ {
+        self.pieces.iter().flatten().copied()
+    }
+
+    fn len(&self) -> usize {
+        self.pieces.iter().map(Vec::len).sum()
+    }
+
+    /// The `k`-th of `LOOP_ENTRIES` evenly spaced entry cells.
+    fn entry(&self, k: usize) -> (usize, usize) {
+        let n = self.len();
+        let mut i = (k * n) / LOOP_ENTRIES;
+        for (p, piece) in self.pieces.iter().enumerate() {
+            if i < piece.len() {
+                return (p, i);
+            }
+            i -= piece.len();
+        }
+        (0, 0)
+    }
+}
+
+/// Clockwise neighbours in grid coordinates (row down): W, NW, N, NE, E, SE, S, SW.
+const RING: [(isize, isize); 8] = [
+    (0, -1),
+    (-1, -1),
+    (-1, 0),
+    (-1, 1),
+    (0, 1),
+    (1, 1),
+    (1, 0),
+    (1, -1),
+];
+
+fn set_at(mask: &Grid<bool>, c: Cell, d: (isize, isize)) -> Option<Cell> {
+    mask.offset(c, d).filter(|&n| mask[n])
+}
+
+/// Every contour of `mask` (outer boundaries and holes), traced by Moore
+/// neighbour tracing from each boundary cell whose west neighbour is not set
+/// and that no earlier contour passed, keeping only the cells along walls:
+/// a boundary cell all of whose outside neighbours are `admissible` borders
+/// another region (a room cut), not a wall, and is left out, which opens
+/// the contour into runs.
+fn edge_loops(mask: &Grid<bool>, admissible: &Grid<bool>) -> Vec<EdgeLoop> {
+    let mut on_contour = Grid::new(mask.width(), mask.height(), false);
+    let mut loops = Vec::new();
+    let by_wall = |c: Cell| {
+        RING.iter().any(|&d| match mask.offset(c, d) {
+            None => true,
+            Some(n) => !mask[n] && !admissible[n],
+        })
+    };
+    for s in mask.true_cells() {
+        if on_contour[s] || set_at(mask, s, (0, -1)).is_some() {
+            continue;
+        }
+        let trace = moore_trace(mask, s);
+        for &c in &trace {
+            on_contour[c] = true;
+        }
+        let walls: Vec<bool> = trace.iter().map(|&c| by_wall(c)).collect();
+        if walls.iter().all(|&w| w) {
+            loops.push(EdgeLoop {
+                pieces: four_connected_pieces(mask, &trace, true),
+                closed: true,
+            });
+            continue;
+        }
+        // Open runs: start after a cut cell so that no run wraps around.
+        let n = trace.len();
+        let first_cut = walls.iter().position(|&w| !w).unwrap_or(0);
+        let mut run: Vec<Cell> = Vec::new();
+        for k in 1..=n {
+            let i = (first_cut + k) % n;
+            if walls[i] {
+                run.push(trace[i]);
+            } else if !run.is_empty() {
+                loops.push(EdgeLoop {
+                    pieces: four_connected_pieces(mask, &run, false),
+                    closed: false,
+                });
+                run.clear();
+            }
+        }
+        if !run.is_empty() {
+            loops.push(EdgeLoop {
+                pieces: four_connected_pieces(mask, &run, false),
+                closed: false,
+            });
+        }
+    }
+    loops
+}
+
+/// The closed Moore trace from `s` (its west neighbour unset), ending
+/// before it returns to `s` the way it first left (Jacob's criterion).
+fn moore_trace(mask: &Grid<bool>, s: Cell) -> Vec<Cell> {
+    let Some((n1, b1)) = moore_step(mask, s, 0) else {
+        return vec![s];
+    };
+    let mut trace = vec![s];
+    let (mut here, mut back) = (n1, b1);
+    let limit = 4 * mask.count_true() + 8;
+    for _ in 0..limit {
+        if here == s {
+            let Some((n, b)) = moore_step(mask, s, back) else {
+                break;
+            };
+            if n == n1 {
+                break;
+            }
+            trace.push(s);
+            (here, back) = (n, b);
+            continue;
+        }
+        trace.push(here);
+        match moore_step(mask, here, back) {
+            Some((n, b)) => (here, back) = (n, b),
+            None => break,
+        }
+    }
+    trace
+}
+
+/// The next contour cell clockwise around `here` from the unset neighbour
+/// at ring index `back`, and the new backtrack index seen from it.
+fn moore_step(mask: &Grid<bool>, here: Cell, back: usize) -> Option<(Cell, usize)> {
+    for k in 1..=8 {
+        let idx = (back + k) % 8;
+        if let Some(n) = set_at(mask, here, RING[idx]) {
+            // The neighbour checked just before (unset), seen from `n`.
+            let prev = RING[(idx + 7) % 8];
+            let from_n = (
+                here.row as isize + prev.0 - n.row as isize,
+                here.col as isize + prev.1 - n.col as isize,
+            );
+            let b = RING.iter().position(|&d| d == from_n).unwrap_or(0);
+            return Some((n, b));
+        }
+    }
+    None
+}
+
+/// Splits an 8-connected trace (closed: back to its first cell) into
+/// 4-connected pieces: a diagonal step gets the plannable cell beside it, or
+/// starts a new piece when both are blocked; a larger jump starts a new piece.
+fn four_connected_pieces(mask: &Grid<bool>, trace: &[Cell], close: bool) -> Vec<Vec<Cell>> {
+    let mut pieces = vec![Vec::new()];
+    let mut closed: Vec<Cell> = trace.to_vec();
+    if let (true, Some(&f)) = (close, trace.first()) {
+        closed.push(f);
+    }
+    for (i, &c) in closed.iter().enumerate() {
+        if i == 0 {
+            pieces[0].push(c);
+            continue;
+        }
+        let a = closed[i - 1];
+        let (dr, dc) = (
+            c.row as isize - a.row as isize,
+            c.col as isize - a.col as isize,
+        );
+        if dr != 0 && dc != 0 {
+            let side = set_at(mask, a, (dr, 0)).or_else(|| set_at(mask, a, (0, dc)));
+            match side {
+                Some(m) => pieces.last_mut().map(|p| p.push(m)).unwrap_or_default(),
+                None => pieces.push(Vec::new()),
+            }
+        }
+        if let Some(p) = pieces.last_mut() {
+            if p.last() != Some(&c) {
+                p.push(c);
+            }
+        }
+    }
+    pieces.retain(|p| !p.is_empty());
+    pieces
+}
+
+/// The dominant wall direction (radians, modulo π/2) of the loops: the
+/// length-weighted circular mean of 4θ over steps between cells a few
+/// apart along each piece.
+fn wall_angle(loops: &[EdgeLoop]) -> f64 {
+    let (mut sx, mut sy) = (0.0, 0.0);
+    for l in loops {
+        for piece in &l.pieces {
+            for w in piece.chunks(4).collect::<Vec<_>>().windows(2) {
+                let (a, b) = (w[0][0], w[1][0]);
+                let (dx, dy) = (b.col as f64 - a.col as f64, b.row as f64 - a.row as f64);
+                let len = dx.hypot(dy);
+                if len > 0.0 {
+                    let t = 4.0 * dy.atan2(dx);
+                    sx += len * t.cos();
+                    sy += len * t.sin();
+                }
+            }
+        }
+    }
+    if sx == 0.0 && sy == 0.0 {
+        0.0
+    } else {
+        sy.atan2(sx) / 4.0
+    }
+}
+
+/// Straightening tolerance of edge loops: half the tool radius, within
+/// these bounds (cells). A loop through every boundary cell would cover the
+/// whole strip along walls but turns at every pixel of a ragged wall; what a
+/// straightened loop passes just out of reach is left to the boundary pass
+/// (measured in `docs/efficiency.md`).
+const LOOP_TOLERANCE: (f64, f64) = (0.25, 1.0);
+
+/// The point of boundary cell `c` pushed towards its non-plannable
+/// neighbours, at most `OUTSET` of a cell from its centre along each axis
+/// (so still inside the cell).
+fn outset_point(mask: &Grid<bool>, c: Cell) -> GridPoint {
+    let (mut x, mut y) = (0.0, 0.0);
+    for &(dr, dc) in &RING {
+        if set_at(mask, c, (dr, dc)).is_none() {
+            let n = ((dr * dr + dc * dc) as f64).sqrt();
+            x += dc as f64 / n;
+            y += dr as f64 / n;
+        }
+    }
+    let centre = cell_center(c);
+    let n = x.hypot(y);
+    if n < 1e-9 {
+        return centre;
+    }
+    let (ux, uy) = (x / n, y / n);
+    let t = OUTSET / ux.abs().max(uy.abs());
+    GridPoint::new(centre.x + t * ux, centre.y + t * uy)
+}
+
+/// How far a loop point sits from its cell's centre, towards the walls (cells).
+const OUTSET: f64 = 0.45;
+
+fn drive_loop(
+    path: &mut PathBuilder<'_>,
+    l: &EdgeLoop,
+    option: usize,
+    tolerance: f64,
+) -> Result<()> {
+    let seq: Vec<Vec<Cell>> = if l.closed {
+        let (p, i) = l.entry(option);
+        // The loop from its entry: the rest of the entry piece, the other
+        // pieces, the start of the entry piece, back to the entry.
+        let mut seq = vec![l.pieces[p][i..].to_vec()];
+        for k in 1..l.pieces.len() {
+            seq.push(l.pieces[(p + k) % l.pieces.len()].clone());
+        }
+        seq.push(l.pieces[p][..=i].to_vec());
+        seq
+    } else if option == 0 {
+        l.pieces.clone()
+    } else {
+        l.pieces
+            .iter()
+            .rev()
+            .map(|p| p.iter().rev().copied().collect())
+            .collect()
+    };
+    let mask = path.mask();
+    for piece in &seq {
+        let Some(&first) = piece.first() else {
+            continue;
+        };
+        path.go_to(cell_center(first))?;
+        // Outset points, with the cell centres between two of them whose
+        // straight join is not clear.
+        let mut targets: Vec<GridPoint> = Vec::with_capacity(piece.len());
+        let mut prev = path.last();
+        for (k, &c) in piece.iter().enumerate() {
+            let q = outset_point(mask, c);
+            if !segment_clear(mask, prev, q) {
+                if k > 0 {
+                    targets.push(cell_center(piece[k - 1]));
+                }
+                targets.push(cell_center(c));
+            }
+            targets.push(q);
+            prev = q;
+        }
+        if let Some(&last) = piece.last() {
+            targets.push(cell_center(last));
+        }
+        path.follow_points(targets, |a, b, skipped| {
+            skipped
+                .iter()
+                .all(|&m| segment_distance(a, b, m) <= tolerance)
+        });
+    }
+    Ok(())
+}
+
+// ---------------------------------------------------------------- lanes
+
+/// A lane: a clear straight segment in grid coordinates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Lane {
+    a: GridPoint,
+    b: GridPoint,
+}
+
+impl Lane {
+    fn length(&self) -> f64 {
+        (self.b - self.a).norm()
+    }
+}
+
+/// Lanes on consecutive lines driven back and forth.
+#[derive(Clone, Debug, PartialEq)]
+struct Chain {
+    lanes: Vec<Lane>,
+}
+
+impl Chain {
+    /// Estimated seconds: lanes and links at speed, a half turn per link,
+    /// and a turn plus a spacing of transit per chain.
+    fn time(&self, t: &TimeModel, spacing: f64) -> f64 {
+        let lanes: f64 = self.lanes.iter().map(Lane::length).sum();
+        let links = self.lanes.len().saturating_sub(1) as f64;
+        t.time(lanes + links * spacing, links * PI) + t.time(spacing, PI / 2.0)
+    }
+
+    /// Entry and exit of option `k` (bit 0: from the last lane; bit 1:
+    /// starting at each lane's `b` end).
+    fn ends(&self, k: usize) -> (GridPoint, GridPoint) {
+        let seq = self.sequence(k);
+        (seq[0], seq[seq.len() - 1])
+    }
+
+    /// The points driven under option `k`.
+    fn sequence(&self, k: usize) -> Vec<GridPoint> {
+        let backwards = k & 1 == 1;
+        let mut flip = k & 2 == 2;
+        let idx: Vec<usize> = if backwards {
+            (0..self.lanes.len()).rev().collect()
+        } else {
+            (0..self.lanes.len()).collect()
+        };
+        let mut pts = Vec::with_capacity(2 * idx.len());
+        for i in idx {
+            let l = self.lanes[i];
+            if flip {
+                pts.extend([l.b, l.a]);
+            } else {
+                pts.extend([l.a, l.b]);
+            }
+            flip = !flip;
+        }
+        pts
+    }
+}
+
+fn drive_chain(path: &mut PathBuilder<'_>, c: &Chain, option: usize) -> Result<()> {
+    for p in c.sequence(option) {
+        path.go_to(p)?;
+    }
+    Ok(())
+}
+
+/// The chains of lanes at direction `theta` (grid coordinates), lines at
+/// most `spacing` apart spread evenly over the lane mask's extent, and the
+/// distance between lines.
+fn chains_at(
+    plannable: &Grid<bool>,
+    lane_mask: &Grid<bool>,
+    theta: f64,
+    spacing: f64,
+) -> (Vec<Chain>, f64) {
+    let d = GridPoint::new(theta.cos(), theta.sin());
+    let n = GridPoint::new(-d.y, d.x);
+    let (mut nmin, mut nmax) = (f64::INFINITY, f64::NEG_INFINITY);
+    let (mut dmin, mut dmax) = (f64::INFINITY, f64::NEG_INFINITY);
+    for c in lane_mask.true_cells() {
+        let p = cell_center(c);
+        let (u, v) = (p.x * d.x + p.y * d.y, p.x * n.x + p.y * n.y);
+        nmin = nmin.min(v);
+        nmax = nmax.max(v);
+        dmin = dmin.min(u);
+        dmax = dmax.max(u);
+    }
+    if !nmin.is_finite() {
+        return (Vec::new(), spacing);
+    }
+    let extent = nmax - nmin;
+    let lines = (extent / spacing).ceil().max(0.0) as usize + 1;
+    let step = if lines > 1 {
+        extent / (lines - 1) as f64
+    } else {
+        0.0
+    };
+    let at = |u: f64, v: f64| GridPoint::new(u * d.x + v * n.x, u * d.y + v * n.y);
+    // Runs of the lane mask along each line, sampled every quarter cell.
+    let mut rows: Vec<Vec<(f64, f64)>> = Vec::with_capacity(lines);
+    let (u0, u1) = (dmin - 1.0, dmax + 1.0);
+    let samples = ((u1 - u0) / 0.25).ceil() as usize;
+    for j in 0..lines {
+        let v = nmin + step * j as f64;
+        let mut runs = Vec::new();
+        let mut open: Option<f64> = None;
+        let mut last_in = u0;
+        for s in 0..=samples {
+            let u = u0 + s as f64 * 0.25;
+            let inside = cell_of(lane_mask, at(u, v)).is_some_and(|c| lane_mask[c]);
+            match (inside, open) {
+                (true, None) => open = Some(u),
+                (false, Some(o)) => {
+                    runs.push((o, last_in));
+                    open = None;
+                }
+                _ => {}
+            }
+            if inside {
+                last_in = u;
+            }
+        }
+        if let Some(o) = open {
+            runs.push((o, last_in));
+        }
+        // Keep the clear part of each run (a run may graze a blocked
+        // corner between samples): split at the first blocked stretch.
+        let mut clear = Vec::new();
+        for (a, b) in runs {
+            split_clear(plannable, &at, v, a, b, &mut clear);
+        }
+        rows.push(clear);
+    }
+    // Chain runs of consecutive lines that overlap one to one.
+    let overlaps = |x: (f64, f64), y: (f64, f64)| x.0.max(y.0) <= x.1.min(y.1);
+    let mut chains: Vec<Chain> = Vec::new();
+    let mut open_chain: Vec<Option<usize>> = Vec::new(); // per run of the previous line
+    for j in 0..rows.len() {
+        let mut now: Vec<Option<usize>> = vec![None; rows[j].len()];
+        for (i, &r) in rows[j].iter().enumerate() {
+            let v = nmin + step * j as f64;
+            let lane = Lane {
+                a: at(r.0, v),
+                b: at(r.1, v),
+            };
+            let mut joined = None;
+            if j > 0 {
+                let prev: Vec<usize> = (0..rows[j - 1].len())
+                    .filter(|&k| overlaps(rows[j - 1][k], r))
+                    .collect();
+                if let [k] = prev[..] {
+                    let forward = rows[j]
+                        .iter()
+                        .filter(|&&q| overlaps(rows[j - 1][k], q))
+                        .count();
+                    if forward == 1 {
+                        joined = open_chain.get(k).copied().flatten();
+                    }
+                }
+            }
+            let id = match joined {
+                Some(id) => {
+                    chains[id].lanes.push(lane);
+                    id
+                }
+                None => {
+                    chains.push(Chain { lanes: vec![lane] });
+                    chains.len() - 1
+                }
+            };
+            now[i] = Some(id);
+        }
+        open_chain = now;
+    }
+    (chains, if lines > 1 { step } else { spacing })
+}
+
+/// Pushes the clear sub-runs of `[a, b]` on line `v` into `out`.
+fn split_clear(
+    plannable: &Grid<bool>,
+    at: &impl Fn(f64, f64) -> GridPoint,
+    v: f64,
+    a: f64,
+    b: f64,
+    out: &mut Vec<(f64, f64)>,
+) {
+    if segment_clear(plannable, at(a, v), at(b, v)) {
+        out.push((a, b));
+        return;
+    }
+    // Walk in quarter cells, keeping maximal clear stretches.
+    let mut s = a;
+    let mut u = a;
+    while u < b {
+        let next = (u + 0.25).min(b);
+        if !segment_clear(plannable, at(u, v), at(next, v)) {
+            if u > s {
+                out.push((s, u));
+            }
+            s = next;
+        }
+        u = next;
+    }
+    if b > s && segment_clear(plannable, at(s, v), at(b, v)) {
+        out.push((s, b));
+    }
+}
+
+// ---------------------------------------------------------------- order
+
+#[derive(Clone, Copy, Debug)]
+enum Node<'a> {
+    Loop(&'a EdgeLoop),
+    Chain(&'a Chain),
+}
+
+impl Node<'_> {
+    fn options(&self) -> usize {
+        match self {
+            Node::Loop(l) if !l.closed => 2,
+            Node::Loop(_) => LOOP_ENTRIES,
+            Node::Chain(_) => 4,
+        }
+    }
+
+    fn ends(&self, k: usize) -> (GridPoint, GridPoint) {
+        match self {
+            Node::Loop(l) if !l.closed => {
+                let first = l
+                    .pieces
+                    .first()
+                    .and_then(|p| p.first())
+                    .copied()
+                    .unwrap_or_default();
+                let last = l
+                    .pieces
+                    .last()
+                    .and_then(|p| p.last())
+                    .copied()
+                    .unwrap_or_default();
+                let (a, b) = (cell_center(first), cell_center(last));
+                if k == 0 { (a, b) } else { (b, a) }
+            }
+            Node::Loop(l) => {
+                let (p, i) = l.entry(k);
+                let c = cell_center(l.pieces[p][i]);
+                (c, c)
+            }
+            Node::Chain(c) => c.ends(k),
+        }
+    }
+
+    /// The option driving the same work backwards (exit and entry swapped).
+    fn reversed(&self, k: usize) -> usize {
+        match self {
+            Node::Loop(l) if !l.closed => k ^ 1,
+            Node::Loop(_) => k,
+            Node::Chain(c) => {
+                // Backwards flips bit 0; the start side of the new first
+                // lane is the old exit's side.
+                let odd = c.lanes.len() % 2 == 1;
+                let flip = if odd { (k & 2) ^ 2 } else { k & 2 };
+                (k & 1 ^ 1) | flip
+            }
+        }
+    }
+}
+
+/// Order and entry options of `nodes` from `start`, minimising estimated
+/// transit time (straight-line distance over v; a generalised TSP).
+fn order_nodes(nodes: &[Node<'_>], start: GridPoint, t: &TimeModel) -> Vec<(usize, usize)> {
+    let n = nodes.len();
+    if n == 0 {
+        return Vec::new();
+    }
+    let cost = |p: GridPoint, q: GridPoint| (q - p).norm() / t.linear_speed;
+    // Nearest neighbour over every entry.
+    let mut used = vec![false; n];
+    let mut tour: Vec<(usize, usize)> = Vec::with_capacity(n);
+    let mut here = start;
+    for _ in 0..n {
+        let mut best: Option<(f64, usize, usize)> = None;
+        for (i, node) in nodes.iter().enumerate() {
+            if used[i] {
+                continue;
+            }
+            for k in 0..node.options() {
+                let c = cost(here, node.ends(k).0);
+                if best.is_none_or(|b| c < b.0) {
+                    best = Some((c, i, k));
+                }
+            }
+        }
+        let Some((_, i, k)) = best else { break };
+        used[i] = true;
+        tour.push((i, k));
+        here = nodes[i].ends(k).1;
+    }
+    // 2-opt: reversing a stretch drives its nodes backwards.
+    let exit = |tour: &[(usize, usize)], i: usize| {
+        if i == 0 {
+            start
+        } else {
+            nodes[tour[i - 1].0].ends(tour[i - 1].1).1
+        }
+    };
+    // 2-opt is O(n²) per round: on large regions (a whole map of tiny
+    // cells) the nearest-neighbour order and the exact entry choice stand.
+    let rounds = if n <= TWO_OPT_LIMIT { 50 } else { 0 };
+    for _round in 0..rounds {
+        let mut better = false;
+        for i in 0..n {
+            for j in i + 1..n {
+                let before_in = exit(&tour, i);
+                let (a_in, _) = nodes[tour[i].0].ends(tour[i].1);
+                let (_, b_out) = nodes[tour[j].0].ends(tour[j].1);
+                let after = tour.get(j + 1).map(|&(m, k)| nodes[m].ends(k).0);
+                let old = cost(before_in, a_in) + after.map_or(0.0, |q| cost(b_out, q));
+                // Reversed: enter at b's old exit, leave at a's old entry.
+                let new = cost(before_in, b_out) + after.map_or(0.0, |q| cost(a_in, q));
+                if new < old - 1e-9 {
+                    tour[i..=j].reverse();
+                    for e in &mut tour[i..=j] {
+                        e.1 = nodes[e.0].reversed(e.1);
+                    }
+                    better = true;
+                }
+            }
+        }
+        if !better {
+            break;
+        }
+    }
+    best_options(nodes, &mut tour, start, &cost);
+    tour
+}
+
+/// Chooses every node's option for the fixed order (exact: a shortest path
+/// through layers of options).
+fn best_options(
+    nodes: &[Node<'_>],
+    tour: &mut [(usize, usize)],
+    start: GridPoint,
+    cost: &impl Fn(GridPoint, GridPoint) -> f64,
+) {
+    let mut layers: Vec<Vec<(f64, usize)>> = Vec::with_capacity(tour.len());
+    for (i, &(node, _)) in tour.iter().enumerate() {
+        let m = nodes[node].options();
+        let mut layer = Vec::with_capacity(m);
+        for k in 0..m {
+            let entry = nodes[node].ends(k).0;
+            let (c, from) = if i == 0 {
+                (cost(start, entry), 0)
+            } else {
+                let prev = tour[i - 1].0;
+                (0..layers[i - 1].len())
+                    .map(|q| (layers[i - 1][q].0 + cost(nodes[prev].ends(q).1, entry), q))
+                    .min_by(|a, b| a.0.total_cmp(&b.0))
+                    .unwrap_or((f64::INFINITY, 0))
+            };
+            layer.push((c, from));
+        }
+        layers.push(layer);
+    }
+    let Some(last) = layers.last() else { return };
+    let mut k = (0..last.len())
+        .min_by(|&a, &b| last[a].0.total_cmp(&last[b].0))
+        .unwrap_or(0);
+    for i in (0..tour.len()).rev() {
+        tour[i].1 = k;
+        k = layers[i][k].1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use oxcover_grid::io::parse_ascii;
+    use oxcover_grid::{DiscRobot, Point};
+
+    use crate::{CoverageProblem, Start};
+
+    fn mask(rows: &[&str]) -> Grid<bool> {
+        oxcover_grid::io::ascii_mask(rows).expect("valid map")
+    }
+
+    #[test]
+    fn a_rectangle_has_one_loop_of_its_border() {
+        let m = mask(&["....", "....", "...."]);
+        let loops = edge_loops(&m, &Grid::new(m.width(), m.height(), false));
+        assert_eq!(loops.len(), 1);
+        let cells: std::collections::BTreeSet<Cell> = loops[0].cells().collect();
+        assert_eq!(cells.len(), 10);
+        assert!(!cells.contains(&Cell::new(1, 1)) && !cells.contains(&Cell::new(1, 2)));
+    }
+
+    #[test]
+    fn a_pillar_gets_its_own_loop() {
+        let m = mask(&[".....", ".....", "..#..", ".....", "....."]);
+        let loops = edge_loops(&m, &Grid::new(m.width(), m.height(), false));
+        assert_eq!(loops.len(), 2);
+        // The pillar's loop: the eight cells around it.
+        let cells: std::collections::BTreeSet<Cell> = loops[1].cells().collect();
+        assert_eq!(cells.len(), 8);
+    }
+
+    #[test]
+    fn chains_reverse_consistently() {
+        let lanes = |k: usize| Chain {
+            lanes: (0..k)
+                .map(|i| Lane {
+                    a: Point::new(0.0, i as f64),
+                    b: Point::new(5.0, i as f64),
+                })
+                .collect(),
+        };
+        for k in 1..5 {
+            let c = lanes(k);
+            let node = Node::Chain(&c);
+            for opt in 0..4 {
+                let (a, b) = c.ends(opt);
+                let (ra, rb) = c.ends(node.reversed(opt));
+                assert_eq!((ra, rb), (b, a), "{k} lanes, option {opt}");
+            }
+        }
+    }
+
+    /// An open 24 × 9 room, tool 1.5 cells: one edge loop and lanes cover
+    /// all but the corners' last cells (the boundary pass's share), nothing
+    /// is crossed.
+    #[test]
+    fn an_open_room_is_one_loop_and_long_lanes() {
+        let (map, _) = parse_ascii(&["........................"; 9].join("\n")).unwrap();
+        let problem =
+            CoverageProblem::new(&map, DiscRobot::new(0.0, 1.5).unwrap(), Start::First).unwrap();
+        let input = problem.input(0);
+        let pts = plan_lanes(&input, None).unwrap();
+        let f = problem.frame();
+        let covered = oxcover_grid::footprint::covered_cells(f, &pts, 1.5);
+        assert!(
+            covered.count_true() >= 24 * 9 - 8,
+            "{}",
+            covered.count_true()
+        );
+        let end = f.cell_at(pts.last().unwrap()).unwrap();
+        let rest = problem.boundary_tour(&pts, end).unwrap();
+        assert!(rest.anchors <= 4, "{}", rest.anchors);
+        let grid_pts: Vec<GridPoint> = pts
+            .iter()
+            .map(|p| {
+                let (r, c) = f.fractional_cell(p);
+                GridPoint::new(c + 0.5, r + 0.5)
+            })
+            .collect();
+        for w in grid_pts.windows(2) {
+            assert!(segment_clear(input.plannable, w[0], w[1]), "{w:?}");
+        }
+        // One loop round the room (62 cells) and lanes one tool width
+        // apart over the rest: far less than a cell-by-cell sweep (216).
+        let total: f64 = pts.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
+        assert!(total < 62.0 + 1.3 * 216.0 / 3.0, "{total}: {pts:?}");
+    }
+}
