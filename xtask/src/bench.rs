@@ -142,6 +142,35 @@ fn floorplan_section(root: &Path) -> anyhow::Result<()> {
     Ok(())
 }
 
+fn efficiency_section(root: &Path) -> anyhow::Result<()> {
+    let group = root.join("target/criterion/efficiency");
+    let mut md = format!(
+        "Measured by `cargo xtask bench --only efficiency` (which runs `cargo bench -p oxcover --bench efficiency`) on {}.\n\nThe whole pipeline of `oxcover plan` (problem, room units, planner, boundary pass, metrics) on `lab_b.png` (1237×672 px at 0.05 m/px), robot and tool radius 0.3 m. Reference: `boustrophedon` with rooms off, the best planner before issue 15.\n\n| run | mean ms | sd ms | / reference | under 1 s |\n|---|---:|---:|---:|---|\n",
+        machine()
+    );
+    let (reference, _) = estimate_ns(&group.join("boustrophedon-rooms-off"))
+        .with_context(|| format!("no criterion results under {}", group.display()))?;
+    for name in [
+        "boustrophedon-rooms-off",
+        "lanes-rooms-off",
+        "lanes-rooms-on",
+        "boustrophedon-rooms-on",
+    ] {
+        let Ok((mean, sd)) = estimate_ns(&group.join(name)) else {
+            continue;
+        };
+        md += &format!(
+            "| {name} | {:.1} | {:.1} | {:.2} | {} |\n",
+            mean / 1e6,
+            sd / 1e6,
+            mean / reference,
+            if mean < 1e9 { "yes" } else { "**no**" }
+        );
+    }
+    crate::replace_section(&root.join("docs/benchmarks.md"), "efficiency", &md)?;
+    Ok(())
+}
+
 fn smooth_section(root: &Path) -> anyhow::Result<()> {
     let group = root.join("target/criterion/smooth");
     let mut md = format!(
@@ -219,6 +248,7 @@ pub fn run(no_run: bool, only: Option<&str>) -> anyhow::Result<()> {
     let want = |name: &str| only.is_none_or(|o| o == name);
     for (name, krate) in [
         ("floorplan", "oxcover-planners"),
+        ("efficiency", "oxcover"),
         ("smooth", "oxcover-planners"),
         ("sensor_bcd", "oxcover"),
         ("grid_cover", "oxcover-planners"),
@@ -235,6 +265,9 @@ pub fn run(no_run: bool, only: Option<&str>) -> anyhow::Result<()> {
     }
     if want("floorplan") {
         floorplan_section(&root)?;
+    }
+    if want("efficiency") {
+        efficiency_section(&root)?;
     }
     if want("smooth") {
         smooth_section(&root)?;

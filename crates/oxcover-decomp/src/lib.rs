@@ -16,7 +16,8 @@
 //!   offsets of the obstacles, with safety levels and the road graph.
 //! - [`rooms`]: room segmentation of indoor maps by morphology (erode until
 //!   the free space splits into room-sized seeds, grow them back), with the
-//!   doors between rooms.
+//!   doors between rooms; [`voronoi_rooms`]: the same output from the
+//!   distance transform's medial axis, split at its narrow points (doors).
 //!
 //! ```
 //! use oxcover_decomp::QuadTree;
@@ -37,6 +38,7 @@ pub mod rectangular;
 pub mod rooms;
 pub mod slices;
 pub mod trapezoidal;
+pub mod voronoi_rooms;
 
 pub use border_expansion::{BorderExpansion, Road, border_expansion};
 pub use boustrophedon::boustrophedon;
@@ -45,3 +47,4 @@ pub use rectangular::{Rectangle, RectangularDecomposition, dir8_bit};
 pub use rooms::{Door, RoomParams, Rooms, morphological};
 pub use slices::{Interval, Lane, SliceDecomposition, Slices};
 pub use trapezoidal::trapezoidal;
+pub use voronoi_rooms::voronoi;

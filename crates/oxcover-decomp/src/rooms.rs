@@ -48,19 +48,24 @@ pub struct RoomParams {
     /// Smallest eroded piece kept as a room seed (m²).
     pub min_area_m2: f64,
     /// Largest eroded piece kept as a room seed; larger pieces are eroded
-    /// further (m²).
+    /// further (m²). Morphological method only.
     pub max_area_m2: f64,
+    /// Widest opening taken for a door (m). Medial-axis method only
+    /// ([`crate::voronoi_rooms`]).
+    pub door_width_m: f64,
 }
 
 impl RoomParams {
     /// Indoor defaults for a map of `resolution`: seeds between 1 m² and
-    /// 47 m² (the survey's values for the morphological method).
+    /// 47 m² (the survey's values for the morphological method), doors up
+    /// to 1.6 m wide (wide enough for double doors and open passages).
     #[must_use]
     pub fn indoor(resolution: f64) -> Self {
         Self {
             resolution,
             min_area_m2: 1.0,
             max_area_m2: 47.0,
+            door_width_m: 1.6,
         }
     }
 }
@@ -283,7 +288,7 @@ fn flood(labels: &mut Grid<u32>, start: Cell, label: u32, inside: impl Fn(Cell) 
 }
 
 /// Breadth-first growth of labelled cells over unlabelled free cells.
-fn grow(free: &Grid<bool>, labels: &mut Grid<u32>, queue: &mut VecDeque<Cell>) {
+pub(crate) fn grow(free: &Grid<bool>, labels: &mut Grid<u32>, queue: &mut VecDeque<Cell>) {
     while let Some(c) = queue.pop_front() {
         let l = labels[c];
         for d in Dir4::ALL {
@@ -298,7 +303,7 @@ fn grow(free: &Grid<bool>, labels: &mut Grid<u32>, queue: &mut VecDeque<Cell>) {
 }
 
 /// The doors between every pair of touching rooms.
-fn doors(labels: &Grid<u32>) -> Vec<Door> {
+pub(crate) fn doors(labels: &Grid<u32>) -> Vec<Door> {
     let mut touching: BTreeMap<(u32, u32), Vec<Cell>> = BTreeMap::new();
     for c in labels.cells() {
         let a = labels[c];

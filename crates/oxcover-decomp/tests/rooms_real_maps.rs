@@ -63,3 +63,28 @@ fn bundled_maps_have_plausible_rooms() {
         }
     }
 }
+
+#[test]
+fn the_medial_axis_method_finds_the_doors_of_the_bundled_maps() {
+    // (map, rooms expected). The flat: six rooms behind its 1.5 m openings
+    // (a door by the default width) and the hall. The hospital wing: the
+    // wards behind doorways part from the corridor, the wards open to it
+    // along their whole width stay with it. The office's halves join
+    // through an opening wider than a door; the arena has none.
+    for (map, rooms) in [
+        ("turtlebot_simulator/simple_rooms.yaml", 7..=7),
+        ("turtlebot_simulator/hospital_section.yaml", 15..=25),
+        ("lee2011/office.yaml", 1..=2),
+        ("nav2/turtlebot3_world.yaml", 1..=1),
+    ] {
+        let m = read_map(&fixture(map), &ReadOptions::default()).expect("bundled map");
+        let free = m.free_mask();
+        let r = oxcover_decomp::voronoi(&free, &RoomParams::indoor(m.resolution()));
+        check(&free, &r);
+        assert!(rooms.contains(&r.seeded), "{map}: {} rooms", r.seeded);
+        assert!(
+            r.doors.len() + 1 >= r.seeded,
+            "{map}: rooms not joined by doors"
+        );
+    }
+}

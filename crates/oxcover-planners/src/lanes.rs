@@ -110,6 +110,9 @@ impl Planner for Lanes {
 
 /// Factor by which an angle must beat the wall directions to be chosen.
 const WALL_PREFERENCE: f64 = 1.1;
+/// Shift of every lane line off the cell edges it would otherwise run
+/// along (cells).
+const EDGE_NUDGE: f64 = 1e-4;
 /// Most nodes the order's 2-opt runs on.
 const TWO_OPT_LIMIT: usize = 600;
 /// Entry points tried per loop.
@@ -620,10 +623,12 @@ fn chains_at(
     let at = |u: f64, v: f64| GridPoint::new(u * d.x + v * n.x, u * d.y + v * n.y);
     // Runs of the lane mask along each line, sampled every quarter cell.
     let mut rows: Vec<Vec<(f64, f64)>> = Vec::with_capacity(lines);
-    let (u0, u1) = (dmin - 1.0, dmax + 1.0);
+    // Samples and lines off the cell edges (a point exactly on an edge is
+    // in one cell here and may be in its neighbour once in metres).
+    let (u0, u1) = (dmin - 1.0 + 0.125, dmax + 1.0);
     let samples = ((u1 - u0) / 0.25).ceil() as usize;
     for j in 0..lines {
-        let v = nmin + step * j as f64;
+        let v = nmin + step * j as f64 + EDGE_NUDGE;
         let mut runs = Vec::new();
         let mut open: Option<f64> = None;
         let mut last_in = u0;
@@ -660,7 +665,7 @@ fn chains_at(
     for j in 0..rows.len() {
         let mut now: Vec<Option<usize>> = vec![None; rows[j].len()];
         for (i, &r) in rows[j].iter().enumerate() {
-            let v = nmin + step * j as f64;
+            let v = nmin + step * j as f64 + EDGE_NUDGE;
             let lane = Lane {
                 a: at(r.0, v),
                 b: at(r.1, v),

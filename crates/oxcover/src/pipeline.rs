@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
-use oxcover_decomp::{RoomParams, morphological};
+use oxcover_decomp::{RoomParams, voronoi};
 use oxcover_grid::{Cell, Coverability, DiscRobot, OccupancyGrid, Point, components4};
 use oxcover_planners::{
     BoundaryRoute, CoverageProblem, PlanOutput, Planner, PlannerOptions, RoomUnits, Start,
@@ -184,6 +184,15 @@ impl PlanRequest {
     }
 }
 
+/// Where one room unit's work lies in a plan's waypoints.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RoomStretch {
+    /// The unit ([`room_units`] label).
+    pub unit: u32,
+    /// Its waypoints: `points[range]`, the transit into it excluded.
+    pub points: std::ops::Range<usize>,
+}
+
 /// The result of [`plan`].
 #[derive(Clone, Debug)]
 pub struct PlanOutcome {
@@ -203,6 +212,9 @@ pub struct PlanOutcome {
     /// Room units planned one after another, when the plan went room by
     /// room (`None`: the whole map at once).
     pub room_units: Option<usize>,
+    /// Each room unit's own stretch of `points`, in the order driven (after
+    /// the transit into it; empty when the whole map was planned at once).
+    pub room_stretches: Vec<RoomStretch>,
     /// Fine cells per coverage-cell side.
     pub coarse_block: usize,
     /// Planning time in milliseconds (problem, rooms, planner, boundary pass).
@@ -296,13 +308,18 @@ pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
     }
 }
 
-/// The room units of `problem` on `map`: the morphological segmentation of
-/// the free cells with indoor defaults ([`RoomParams::indoor`]), split into
+/// The room units of `problem` on `map`: the medial-axis segmentation of
+/// the free cells with indoor defaults ([`oxcover_decomp::voronoi`],
+/// [`RoomParams::indoor`]: rooms end at doors up to 1.6 m wide), split into
 /// connected plannable parts, parts smaller than four coverage cells merged
 /// into a neighbour.
+///
+/// Not the morphological segmentation: it also cuts open halls into pieces
+/// of at most 47 m², and planning such pieces one by one took longer than
+/// planning the hall at once on most ROS maps (`docs/efficiency.md`).
 #[must_use]
 pub fn room_units(map: &OccupancyGrid, problem: &CoverageProblem) -> RoomUnits {
-    let rooms = morphological(&map.free_mask(), &RoomParams::indoor(map.resolution()));
+    let rooms = voronoi(&map.free_mask(), &RoomParams::indoor(map.resolution()));
     let block = problem.block();
     RoomUnits::new(problem.plannable(), &rooms.labels, 4 * block * block)
 }
@@ -426,7 +443,7 @@ fn plan_whole(
         &[region.raw],
         region.boundary,
         boundary_length_m,
-        None,
+        Vec::new(),
         plan_ms,
     )
 }
@@ -445,6 +462,7 @@ fn plan_rooms(
     let mut boundary: Option<BoundaryRoute> = None;
     let mut boundary_length_m = 0.0;
     let mut here = problem.start_cell();
+    let mut stretches = Vec::with_capacity(order.len());
     for (i, &u) in order.iter().enumerate() {
         let (entry, prefix) = if i == 0 {
             (here, start_prefix(problem))
@@ -456,6 +474,7 @@ fn plan_rooms(
             prefix.pop();
             (entry, prefix)
         };
+        let prefix_len = prefix.len();
         let sub = problem.restricted(&units.mask(u), entry)?;
         let mut region = plan_region(&sub, request, prefix)?;
         for c in &mut region.cells {
@@ -468,6 +487,12 @@ fn plan_rooms(
                 points.push(*p);
             }
         }
+        // The unit's own work: the last points, after its transit.
+        let work = region.points.len() - prefix_len.min(region.points.len());
+        stretches.push(RoomStretch {
+            unit: u,
+            points: points.len().saturating_sub(work)..points.len(),
+        });
         cells.extend(region.cells.iter().skip(usize::from(i > 0)).copied());
         raws.push(region.raw);
         if let Some(b) = region.boundary {
@@ -493,7 +518,7 @@ fn plan_rooms(
         &raws,
         boundary,
         boundary_length_m,
-        Some(order.len()),
+        stretches,
         plan_ms,
     )
 }
@@ -508,7 +533,7 @@ fn finish(
     raws: &[Vec<Point>],
     boundary: Option<BoundaryRoute>,
     boundary_length_m: f64,
-    room_units: Option<usize>,
+    room_stretches: Vec<RoomStretch>,
     plan_ms: f64,
 ) -> Result<PlanOutcome> {
     let frame = problem.frame();
@@ -521,7 +546,8 @@ fn finish(
         coverage_without_boundary_pass,
         boundary,
         boundary_length_m,
-        room_units,
+        room_units: (!room_stretches.is_empty()).then_some(room_stretches.len()),
+        room_stretches,
         coarse_block: problem.block(),
         plan_ms,
     })

@@ -2,7 +2,7 @@
 //! [`oxcover_decomp::rooms`] in metres (room areas and centroids, door
 //! centres and widths), as JSON, and drawn with one colour per room.
 
-use oxcover_decomp::{RoomParams, Rooms, morphological};
+use oxcover_decomp::{RoomParams, Rooms, morphological, voronoi};
 use oxcover_grid::OccupancyGrid;
 use serde::Serialize;
 
@@ -36,13 +36,15 @@ pub struct DoorInfo {
 /// The `oxcover segment --out F.json` object.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RoomsReport {
-    /// Method (`morphological`).
+    /// Method (`morphological` or `voronoi`).
     pub method: String,
-    /// Smallest room seed asked for (m²).
+    /// Smallest room asked for (m²).
     pub min_area_m2: f64,
-    /// Largest room seed asked for (m²).
+    /// Largest room seed asked for (m², morphological).
     pub max_area_m2: f64,
-    /// Rooms grown from seeds.
+    /// Widest door asked for (m, voronoi).
+    pub door_width_m: f64,
+    /// Rooms grown from seeds (voronoi: every room).
     pub seeded: usize,
     /// Every room, seeded ones first.
     pub rooms: Vec<RoomInfo>,
@@ -50,14 +52,65 @@ pub struct RoomsReport {
     pub doors: Vec<DoorInfo>,
 }
 
+/// A segmentation method.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Method {
+    /// Erode until the free space splits into room-sized pieces, grow them
+    /// back ([`oxcover_decomp::rooms`]).
+    Morphological,
+    /// Split at the narrow points of the distance transform's medial axis
+    /// ([`oxcover_decomp::voronoi_rooms`]); the rooms `plan` goes by.
+    #[default]
+    Voronoi,
+}
+
+impl Method {
+    /// Its command-line name.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Morphological => "morphological",
+            Method::Voronoi => "voronoi",
+        }
+    }
+}
+
+/// How to segment: the method and its limits.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SegmentOptions {
+    /// The method.
+    pub method: Method,
+    /// Smallest room (m²): the smallest eroded seed (morphological) or the
+    /// smallest region kept apart (voronoi).
+    pub min_area_m2: f64,
+    /// Largest eroded seed (m², morphological only).
+    pub max_area_m2: f64,
+    /// Widest opening taken for a door (m, voronoi only).
+    pub door_width_m: f64,
+}
+
+impl Default for SegmentOptions {
+    fn default() -> Self {
+        let d = RoomParams::indoor(1.0);
+        Self {
+            method: Method::Voronoi,
+            min_area_m2: d.min_area_m2,
+            max_area_m2: d.max_area_m2,
+            door_width_m: d.door_width_m,
+        }
+    }
+}
+
 /// Segments the free cells of `map` into rooms.
 ///
 /// # Errors
-/// [`Error::BadParameter`] naming `--min-area` or `--max-area` when they are
-/// not finite and positive, or the minimum exceeds the maximum.
-pub fn segment(map: &OccupancyGrid, min_area_m2: f64, max_area_m2: f64) -> Result<Rooms> {
-    let min = oxcover_grid::error::positive("--min-area", min_area_m2)?;
-    let max = oxcover_grid::error::positive("--max-area", max_area_m2)?;
+/// [`Error::BadParameter`] naming `--min-area`, `--max-area` or
+/// `--door-width` when they are not finite and positive, or the minimum
+/// exceeds the maximum.
+pub fn segment(map: &OccupancyGrid, options: &SegmentOptions) -> Result<Rooms> {
+    let min = oxcover_grid::error::positive("--min-area", options.min_area_m2)?;
+    let max = oxcover_grid::error::positive("--max-area", options.max_area_m2)?;
+    let door = oxcover_grid::error::positive("--door-width", options.door_width_m)?;
     if min > max {
         return Err(Error::BadParameter {
             name: "--min-area",
@@ -69,18 +122,18 @@ pub fn segment(map: &OccupancyGrid, min_area_m2: f64, max_area_m2: f64) -> Resul
         resolution: map.resolution(),
         min_area_m2: min,
         max_area_m2: max,
+        door_width_m: door,
     };
-    Ok(morphological(&map.free_mask(), &params))
+    let free = map.free_mask();
+    Ok(match options.method {
+        Method::Morphological => morphological(&free, &params),
+        Method::Voronoi => voronoi(&free, &params),
+    })
 }
 
 /// The report of `rooms` on `map`.
 #[must_use]
-pub fn report(
-    map: &OccupancyGrid,
-    rooms: &Rooms,
-    min_area_m2: f64,
-    max_area_m2: f64,
-) -> RoomsReport {
+pub fn report(map: &OccupancyGrid, rooms: &Rooms, options: &SegmentOptions) -> RoomsReport {
     let f = map.frame();
     let cell = f.resolution() * f.resolution();
     let mut sums = vec![(0.0, 0.0); rooms.count()];
@@ -117,9 +170,10 @@ pub fn report(
         })
         .collect();
     RoomsReport {
-        method: "morphological".into(),
-        min_area_m2,
-        max_area_m2,
+        method: options.method.name().into(),
+        min_area_m2: options.min_area_m2,
+        max_area_m2: options.max_area_m2,
+        door_width_m: options.door_width_m,
         seeded: rooms.seeded,
         rooms: rooms_out,
         doors,

@@ -247,7 +247,27 @@ fn bad_inputs_exit_2_with_one_line() {
         ),
         (
             vec!["segment", &good_yaml, "--out", "rooms.txt"],
-            "--out is `rooms.txt`, expected a file name ending in .json",
+            "--out is `rooms.txt`, expected a file name ending in .json, .png or .svg",
+        ),
+        (
+            vec!["segment", &good_yaml, "--door-width", "0"],
+            "--door-width is `0`",
+        ),
+        (
+            vec!["plan", &good_yaml, "--planner", "lanes", "--speed", "0"],
+            "--speed is `0`",
+        ),
+        (
+            vec!["plan", &good_yaml, "--planner", "dtc", "--turn-rate", "-1"],
+            "--turn-rate is `-1`",
+        ),
+        (
+            vec!["eval", &good_yaml, "nope.csv", "--speed", "inf"],
+            "--speed is `inf`",
+        ),
+        (
+            vec!["plan", &good_yaml, "--planner", "dtc", "--rooms", "maybe"],
+            "--rooms",
         ),
         (
             vec![

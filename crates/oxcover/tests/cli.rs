@@ -199,6 +199,8 @@ fn segment_finds_the_rooms_of_the_demo_flat() {
     let (out, _) = run(&[
         "segment",
         &fixture("turtlebot_simulator/simple_rooms.yaml"),
+        "--method",
+        "morphological",
         "--out",
         json_f.to_str().unwrap(),
         "--png",
@@ -229,6 +231,18 @@ fn segment_finds_the_rooms_of_the_demo_flat() {
         assert!(pair.contains(&hall), "{d}");
     }
     assert!(std::fs::metadata(&png).unwrap().len() > 1000);
+
+    // The default method, the rooms `plan` goes by: split at the doors
+    // (1.5 m openings here); `--out` may name a picture.
+    let picture = dir.join("doors.png");
+    let (out, _) = run(&[
+        "segment",
+        &fixture("turtlebot_simulator/simple_rooms.yaml"),
+        "--out",
+        picture.to_str().unwrap(),
+    ]);
+    assert!(out.contains("7 rooms") && out.contains("6 doors"), "{out}");
+    assert!(std::fs::metadata(&picture).unwrap().len() > 1000);
 }
 
 #[test]

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use clap::ValueEnum;
 use oxcover::render::render_to_file;
 use oxcover::report::table;
-use oxcover::rooms::{door_overlay, report, scene, segment};
+use oxcover::rooms::{Method, SegmentOptions, door_overlay, report, scene, segment};
 use oxcover::{Error, Result};
 
 use super::args::load;
@@ -16,6 +16,9 @@ use super::args::load;
 pub(crate) enum MethodArg {
     /// Erode until the free space splits into room-sized pieces, grow them back.
     Morphological,
+    /// Split at the narrow points of the distance transform's medial axis
+    /// (doors): the rooms `plan` goes by.
+    Voronoi,
 }
 
 #[derive(Debug, clap::Args)]
@@ -23,12 +26,13 @@ pub(crate) struct SegmentArgs {
     /// Map file (.yaml, .pgm, .png, .bmp or .map).
     pub(crate) map: PathBuf,
     /// Segmentation method.
-    #[arg(long, value_enum, default_value_t = MethodArg::Morphological)]
+    #[arg(long, value_enum, default_value_t = MethodArg::Voronoi)]
     pub(crate) method: MethodArg,
     /// Resolution in m/cell for images read without a yaml [default: 1.0].
     #[arg(long, value_name = "M", allow_negative_numbers = true)]
     pub(crate) resolution: Option<f64>,
-    /// Smallest room seed in m² (what erosion leaves of a room).
+    /// Smallest room in m² (morphological: what erosion leaves of a room;
+    /// voronoi: smaller regions join a neighbour).
     #[arg(
         long,
         value_name = "M2",
@@ -36,7 +40,7 @@ pub(crate) struct SegmentArgs {
         allow_negative_numbers = true
     )]
     pub(crate) min_area: f64,
-    /// Largest room seed in m²; larger pieces are eroded further.
+    /// Largest room seed in m²; larger pieces are eroded further (morphological).
     #[arg(
         long,
         value_name = "M2",
@@ -44,8 +48,16 @@ pub(crate) struct SegmentArgs {
         allow_negative_numbers = true
     )]
     pub(crate) max_area: f64,
-    /// Rooms and doors to write (JSON).
-    #[arg(long, value_name = "ROOMS.json")]
+    /// Widest opening taken for a door, in metres (voronoi).
+    #[arg(
+        long,
+        value_name = "M",
+        default_value_t = 1.6,
+        allow_negative_numbers = true
+    )]
+    pub(crate) door_width: f64,
+    /// Rooms and doors to write: JSON, or a picture (.png or .svg).
+    #[arg(long, value_name = "ROOMS.json|F.png")]
     pub(crate) out: Option<PathBuf>,
     /// SVG picture to write.
     #[arg(long, value_name = "F.svg")]
@@ -56,20 +68,35 @@ pub(crate) struct SegmentArgs {
 }
 
 pub(crate) fn cmd_segment(a: &SegmentArgs) -> Result<()> {
-    if let Some(f) = &a.out {
-        if f.extension().and_then(|e| e.to_str()) != Some("json") {
+    let out_ext = a
+        .out
+        .as_ref()
+        .map(|f| f.extension().and_then(|e| e.to_str()).unwrap_or(""));
+    if let (Some(f), Some(ext)) = (&a.out, out_ext) {
+        if !matches!(ext, "json" | "png" | "svg") {
             return Err(Error::BadParameter {
                 name: "--out",
                 value: f.display().to_string(),
-                expected: "a file name ending in .json".into(),
+                expected: "a file name ending in .json, .png or .svg".into(),
             });
         }
     }
     let map = load(&a.map, a.resolution)?;
-    let rooms = segment(&map, a.min_area, a.max_area)?;
-    let rep = report(&map, &rooms, a.min_area, a.max_area);
+    let options = SegmentOptions {
+        method: match a.method {
+            MethodArg::Morphological => Method::Morphological,
+            MethodArg::Voronoi => Method::Voronoi,
+        },
+        min_area_m2: a.min_area,
+        max_area_m2: a.max_area,
+        door_width_m: a.door_width,
+    };
+    let rooms = segment(&map, &options)?;
+    let rep = report(&map, &rooms, &options);
     let mut written = Vec::new();
-    if let Some(f) = &a.out {
+    let json_out = a.out.as_ref().filter(|_| out_ext == Some("json"));
+    let picture_out = a.out.as_ref().filter(|_| out_ext != Some("json"));
+    if let Some(f) = json_out {
         let json = serde_json::to_string_pretty(&rep)
             .map_err(|e| Error::Internal(format!("rooms serialisation failed: {e}")))?;
         std::fs::write(f, json + "\n").map_err(|e| Error::write(f, e))?;
@@ -81,7 +108,10 @@ pub(crate) fn cmd_segment(a: &SegmentArgs) -> Result<()> {
         oxcover::pipeline::short_name(&a.map.display().to_string())
     );
     let picture = scene(&map, &rooms, &overlay, title);
-    for f in [a.svg.as_ref(), a.png.as_ref()].into_iter().flatten() {
+    for f in [picture_out, a.svg.as_ref(), a.png.as_ref()]
+        .into_iter()
+        .flatten()
+    {
         render_to_file(&picture, f)?;
         written.push(f.clone());
     }

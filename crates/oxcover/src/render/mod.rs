@@ -148,18 +148,24 @@ pub(crate) const START_RGB: [u8; 3] = [30, 160, 60];
 /// Colour of the end marker.
 pub(crate) const END_RGB: [u8; 3] = [210, 40, 40];
 
-/// Legend entries: label and what to draw for it.
-pub(crate) fn legend_key() -> [(&'static str, Swatch); 8] {
-    [
+/// Legend entries of `scene`: label and what to draw for it (coverage
+/// shades only with a coverage mask, path marks only with a path).
+pub(crate) fn legend_key(scene: &Scene<'_>) -> Vec<(&'static str, Swatch)> {
+    let mut key = vec![
         ("free", Swatch::Cell(Shade::Free)),
         ("occupied", Swatch::Cell(Shade::Occupied)),
         ("unknown", Swatch::Cell(Shade::Unknown)),
-        ("covered", Swatch::Cell(Shade::Covered)),
-        ("missed (coverable)", Swatch::Cell(Shade::Missed)),
-        ("path", Swatch::Line),
-        ("start", Swatch::Start),
-        ("end", Swatch::End),
-    ]
+    ];
+    if scene.covered.is_some() {
+        key.push(("covered", Swatch::Cell(Shade::Covered)));
+        key.push(("missed (coverable)", Swatch::Cell(Shade::Missed)));
+    }
+    if !scene.path.is_empty() {
+        key.push(("path", Swatch::Line));
+        key.push(("start", Swatch::Start));
+        key.push(("end", Swatch::End));
+    }
+    key
 }
 
 /// How a legend entry is drawn.

@@ -108,7 +108,7 @@ pub fn render_png(scene: &Scene<'_>) -> Result<Vec<u8>> {
     let mut y = MARGIN_PX + 8;
     text(&mut pm, lx, y, &scene.title, [0, 0, 0]);
     y += 30;
-    for (label, sw) in legend_key() {
+    for (label, sw) in legend_key(scene) {
         let (cx, cy) = (lx as f32 + 8.0, y as f32 + 8.0);
         match sw {
             Swatch::Cell(shade) => {

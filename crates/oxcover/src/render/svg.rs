@@ -111,7 +111,7 @@ pub fn render_svg(scene: &Scene<'_>) -> Result<String> {
         escape(&scene.title)
     );
     y += 30;
-    for (label, sw) in legend_key() {
+    for (label, sw) in legend_key(scene) {
         let (x0, y0) = (lx + 8, y - 12);
         match sw {
             Swatch::Cell(shade) => {

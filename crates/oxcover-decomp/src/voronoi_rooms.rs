@@ -1,0 +1,393 @@
+//! Room segmentation by the distance transform's medial axis: rooms are
+//! split at the narrow points of the axis, the doors.
+//!
+//! 1. The clearance of every free cell (exact distance from its centre to
+//!    the nearest non-free cell's boundary or the map edge) is computed once
+//!    ([`oxcover_grid::edt::boundary_distance_sq4`]).
+//! 2. **Medial axis** (a grid stand-in for the generalised Voronoi diagram):
+//!    the free cells whose clearance is a crest along at least one of the
+//!    four line directions through them (not lower than either neighbour on
+//!    the line, higher than one): the ridge of the distance transform.
+//! 3. **Door candidates**: axis cells at most half a door width
+//!    ([`RoomParams::door_width_m`]) and at least a cell from the walls
+//!    that no neighbouring axis cell undercuts: local minima of the
+//!    clearance along the axis (Bormann et al. 2016's critical points).
+//! 4. **Doors**: a candidate (narrowest first, skipped when its cut would
+//!    overlap a door's already cut) is a door when the axis narrows there between two wider
+//!    spaces: walking from it along the axis (across its critical line, the
+//!    line to its nearest wall) on both sides, over free cells and within a
+//!    wall's thickness, reaches a cell of clearance at least two cells more
+//!    than the candidate's. A corridor (as wide on both sides) or the mouth
+//!    of a corridor (wide on one side only) is no door. The door is cut with
+//!    a disc of the candidate's clearance plus 1.5 cells, which spans the
+//!    gap between the two walls like the survey's critical line between the
+//!    critical point's two nearest obstacle points.
+//! 5. The free space minus the door discs falls into regions; regions below
+//!    [`RoomParams::min_area_m2`] join the neighbour they share the longest
+//!    border with; the regions grow back over the door discs (breadth
+//!    first), and doors are where two rooms meet, as in [`crate::rooms`].
+//!
+//! Written for this workspace after the Voronoi segmentation of Bormann et
+//! al. 2016 ("Room segmentation: survey, implementation, and analysis"), with
+//! these departures: the medial axis is the distance transform's ridge, not
+//! a polygonal Voronoi graph; a candidate must separate two wider spaces to
+//! be a door (the survey cuts at every critical point and merges afterwards
+//! by heuristics on room shape); [`RoomParams::max_area_m2`] plays no part.
+
+use std::collections::{BTreeMap, VecDeque};
+
+use oxcover_grid::edt::boundary_distance_sq4;
+use oxcover_grid::{Cell, Grid};
+
+use crate::rooms::{RoomParams, Rooms, doors, grow};
+
+/// How much wider (cells of clearance) than a door the spaces it joins are.
+const WIDER: f64 = 2.0;
+
+/// The eight neighbours of a cell.
+const RING8: [(isize, isize); 8] = [
+    (-1, -1),
+    (-1, 0),
+    (-1, 1),
+    (0, -1),
+    (0, 1),
+    (1, -1),
+    (1, 0),
+    (1, 1),
+];
+
+/// The four line directions through a cell.
+const LINES: [(isize, isize); 4] = [(0, 1), (1, 0), (1, 1), (1, -1)];
+
+/// Segments the free cells of `free` into rooms at the narrow points of
+/// the medial axis (see the module docs).
+#[must_use]
+pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
+    let (w, h) = (free.width(), free.height());
+    let blocked = free.map(|&f| !f);
+    // 4·clearance² in cells (0 on non-free cells).
+    let d4 = boundary_distance_sq4(&blocked, true);
+    let clearance = |c: Cell| (d4[c] as f64).sqrt() / 2.0;
+    let res = params.resolution;
+    let door_half = if res.is_finite() && res > 0.0 {
+        params.door_width_m / 2.0 / res
+    } else {
+        0.0
+    };
+    let min_cells = if res.is_finite() && res > 0.0 {
+        (params.min_area_m2 / (res * res)).max(1.0)
+    } else {
+        1.0
+    };
+    let at = |c: Cell, d: (isize, isize)| free.offset(c, d).filter(|&n| free[n]);
+    let axis = Grid::from_fn(w, h, |c| {
+        free[c]
+            && LINES.iter().any(|&(dr, dc)| {
+                let v = d4[c];
+                let a = at(c, (dr, dc)).map_or(0, |n| d4[n]);
+                let b = at(c, (-dr, -dc)).map_or(0, |n| d4[n]);
+                // Not lower than either side and higher than one: a
+                // crest across the line (a slope along a wall is no crest).
+                v >= a && v >= b && (v > a || v > b)
+            })
+    });
+    // Candidates: narrowest axis cells within their neighbourhood.
+    let mut candidates: Vec<(u64, Cell)> = Vec::new();
+    for c in axis.true_cells() {
+        let r = clearance(c);
+        if r > door_half || r < 0.5 {
+            continue;
+        }
+        // A local minimum along the axis: no axis neighbour is narrower.
+        let narrowest = RING8
+            .iter()
+            .all(|&d| axis.offset(c, d).is_none_or(|n| !axis[n] || d4[n] >= d4[c]));
+        if narrowest {
+            candidates.push((d4[c], c));
+        }
+    }
+    candidates.sort_unstable();
+    let mut cut = Grid::new(w, h, false);
+    let mut chosen: Vec<(Cell, f64)> = Vec::new();
+    for &(_, c) in &candidates {
+        let r = clearance(c);
+        if chosen.iter().any(|&(o, ro)| {
+            let d = (o.row as f64 - c.row as f64).hypot(o.col as f64 - c.col as f64);
+            d < r + ro + 3.0
+        }) {
+            continue;
+        }
+        let disc = r + 1.5;
+        if narrows(free, &d4, c, door_half) {
+            chosen.push((c, r));
+            let k = disc.ceil() as isize;
+            for dr in -k..=k {
+                for dc in -k..=k {
+                    if ((dr * dr + dc * dc) as f64) <= disc * disc {
+                        if let Some(n) = at(c, (dr, dc)) {
+                            cut[n] = true;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // Regions of the free space minus the cuts.
+    let mut labels = Grid::new(w, h, 0u32);
+    let mut sizes: Vec<usize> = Vec::new();
+    for s in free.true_cells() {
+        if cut[s] || labels[s] != 0 {
+            continue;
+        }
+        sizes.push(0);
+        let id = sizes.len() as u32;
+        labels[s] = id;
+        let mut queue = VecDeque::from([s]);
+        while let Some(c) = queue.pop_front() {
+            sizes[id as usize - 1] += 1;
+            for (_, n) in free.neighbours4(c) {
+                if free[n] && !cut[n] && labels[n] == 0 {
+                    labels[n] = id;
+                    queue.push_back(n);
+                }
+            }
+        }
+    }
+    // Grow back over the cuts, then merge small regions.
+    let mut queue: VecDeque<Cell> = labels.cells().filter(|&c| labels[c] != 0).collect();
+    grow(free, &mut labels, &mut queue);
+    let mut next = sizes.len() as u32 + 1;
+    for c in free.true_cells() {
+        if labels[c] == 0 {
+            // A region made of cut cells only.
+            labels[c] = next;
+            next += 1;
+            queue.push_back(c);
+            grow(free, &mut labels, &mut queue);
+        }
+    }
+    merge_small(&mut labels, min_cells);
+    // Relabel: rooms of at least the smallest area first, then the smaller
+    // free regions (isolated specks no door joins), each in row-major order
+    // of first cells.
+    let mut size: BTreeMap<u32, usize> = BTreeMap::new();
+    let mut first: Vec<u32> = Vec::new();
+    for c in labels.cells() {
+        let l = labels[c];
+        if l != 0 {
+            let e = size.entry(l).or_insert(0);
+            if *e == 0 {
+                first.push(l);
+            }
+            *e += 1;
+        }
+    }
+    let big = |l: &u32| size[l] as f64 >= min_cells;
+    let order: Vec<u32> = first
+        .iter()
+        .filter(|l| big(l))
+        .chain(first.iter().filter(|l| !big(l)))
+        .copied()
+        .collect();
+    let seeded = first.iter().filter(|l| big(l)).count();
+    let fresh: BTreeMap<u32, u32> = order
+        .iter()
+        .enumerate()
+        .map(|(i, &l)| (l, i as u32 + 1))
+        .collect();
+    let mut areas = vec![0usize; order.len()];
+    for c in labels.cells() {
+        let l = labels[c];
+        if l != 0 {
+            let id = fresh[&l];
+            areas[id as usize - 1] += 1;
+            labels[c] = id;
+        }
+    }
+    let doors = doors(&labels);
+    Rooms {
+        seeded,
+        labels,
+        areas,
+        doors,
+    }
+}
+
+/// Whether the axis at `c` narrows between two wider spaces: along the
+/// axis (across the critical line, the line from `c` to its nearest wall
+/// cell) on both sides, within a wall's thickness and the wider space's
+/// clearance, a straight walk over free cells reaches a cell of clearance at
+/// least [`WIDER`] cells more than `c`'s.
+fn narrows(free: &Grid<bool>, d4: &Grid<u64>, c: Cell, door_half: f64) -> bool {
+    let r = (d4[c] as f64).sqrt() / 2.0;
+    let wide = r + WIDER;
+    let wide4 = (4.0 * wide * wide).ceil() as u64;
+    // The nearest non-free cell (or the map edge) round `c`.
+    let k = (r + 2.0).ceil() as isize;
+    let mut best: Option<(f64, (f64, f64))> = None;
+    for dr in -k..=k {
+        for dc in -k..=k {
+            let blocked = free.offset(c, (dr, dc)).is_none_or(|n| !free[n]);
+            if blocked {
+                let d = ((dr * dr + dc * dc) as f64).sqrt();
+                if best.is_none_or(|b| d < b.0) {
+                    best = Some((d, (dr as f64 / d, dc as f64 / d)));
+                }
+            }
+        }
+    }
+    let Some((_, (ur, uc))) = best else {
+        return false;
+    };
+    // Along the axis: perpendicular to the critical line.
+    let (pr, pc) = (-uc, ur);
+    let reach = wide + door_half.min(2.0 * r) + 2.0;
+    let side = |sign: f64| {
+        let mut t = 0.5;
+        while t <= reach {
+            let (rr, cc) = (
+                c.row as f64 + 0.5 + sign * t * pr,
+                c.col as f64 + 0.5 + sign * t * pc,
+            );
+            if rr < 0.0 || cc < 0.0 {
+                return false;
+            }
+            let q = Cell::new(rr as usize, cc as usize);
+            match free.get(q) {
+                Some(true) if d4[q] >= wide4 => return true,
+                Some(true) => {}
+                _ => return false,
+            }
+            t += 0.5;
+        }
+        false
+    };
+    side(1.0) && side(-1.0)
+}
+
+/// Merges regions below `min_cells` into the neighbour they share the
+/// longest border with (smallest first; ties: the larger neighbour, then
+/// the lower label).
+fn merge_small(labels: &mut Grid<u32>, min_cells: f64) {
+    let n = labels.as_slice().iter().copied().max().unwrap_or(0) as usize;
+    if n < 2 {
+        return;
+    }
+    let mut sizes = vec![0usize; n];
+    let mut contacts: Vec<BTreeMap<u32, usize>> = vec![BTreeMap::new(); n];
+    for c in labels.cells() {
+        let l = labels[c];
+        if l == 0 {
+            continue;
+        }
+        sizes[l as usize - 1] += 1;
+        for (_, nb) in labels.neighbours4(c) {
+            let m = labels[nb];
+            if m != 0 && m != l {
+                *contacts[l as usize - 1].entry(m).or_default() += 1;
+            }
+        }
+    }
+    let mut parent: Vec<u32> = (1..=n as u32).collect();
+    let find = |p: &[u32], mut u: u32| {
+        while p[u as usize - 1] != u {
+            u = p[u as usize - 1];
+        }
+        u
+    };
+    let mut order: Vec<usize> = (0..n).filter(|&i| (sizes[i] as f64) < min_cells).collect();
+    order.sort_by_key(|&i| (sizes[i], i));
+    for i in order {
+        let me = i as u32 + 1;
+        if find(&parent, me) != me || (sizes[i] as f64) >= min_cells {
+            continue;
+        }
+        let mut by_root: BTreeMap<u32, usize> = BTreeMap::new();
+        for (&v, &k) in &contacts[i] {
+            let r = find(&parent, v);
+            if r != me {
+                *by_root.entry(r).or_default() += k;
+            }
+        }
+        let best = by_root
+            .iter()
+            .max_by_key(|&(&u, &k)| (k, sizes[u as usize - 1], std::cmp::Reverse(u)));
+        if let Some((&to, _)) = best {
+            parent[i] = to;
+            sizes[to as usize - 1] += std::mem::take(&mut sizes[i]);
+            let mine = std::mem::take(&mut contacts[i]);
+            for (v, k) in mine {
+                *contacts[to as usize - 1].entry(v).or_default() += k;
+            }
+        }
+    }
+    for c in labels.cells() {
+        let l = labels[c];
+        if l != 0 {
+            labels[c] = find(&parent, l);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use oxcover_grid::io::ascii_mask;
+
+    fn params(res: f64) -> RoomParams {
+        RoomParams {
+            resolution: res,
+            min_area_m2: 4.0,
+            max_area_m2: 47.0,
+            door_width_m: 1.2,
+        }
+    }
+
+    /// Two 10 × 10 rooms joined by a door 2 cells wide (0.2 m cells: rooms
+    /// of 4 m², a 0.4 m door): two rooms, one door between them.
+    #[test]
+    fn two_rooms_and_a_door() {
+        let mut rows = Vec::new();
+        for r in 0..10 {
+            let door = if r == 4 || r == 5 { '.' } else { '#' };
+            rows.push(format!("{}{door}{}", ".".repeat(10), ".".repeat(10)));
+        }
+        let refs: Vec<&str> = rows.iter().map(String::as_str).collect();
+        let free = ascii_mask(&refs).unwrap();
+        let rooms = voronoi(&free, &params(0.2));
+        assert_eq!(rooms.count(), 2, "{:?}", rooms.areas);
+        assert_ne!(
+            rooms.labels[Cell::new(0, 0)],
+            rooms.labels[Cell::new(0, 20)]
+        );
+        assert_eq!(rooms.doors.len(), 1);
+    }
+
+    /// A plain corridor is one room: its constant width is no narrowing.
+    #[test]
+    fn a_corridor_is_one_room() {
+        let rows = vec!["........................................"; 3];
+        let free = ascii_mask(&rows).unwrap();
+        assert_eq!(voronoi(&free, &params(0.2)).count(), 1);
+    }
+
+    /// Three rooms in a row, joined by two doors.
+    #[test]
+    fn a_chain_of_three() {
+        let mut rows = Vec::new();
+        for r in 0..12 {
+            let door = if (5..=6).contains(&r) { '.' } else { '#' };
+            rows.push(format!(
+                "{}{door}{}{door}{}",
+                ".".repeat(12),
+                ".".repeat(12),
+                ".".repeat(12)
+            ));
+        }
+        let refs: Vec<&str> = rows.iter().map(String::as_str).collect();
+        let free = ascii_mask(&refs).unwrap();
+        let rooms = voronoi(&free, &params(0.2));
+        assert_eq!(rooms.count(), 3, "{:?}", rooms.areas);
+        assert_eq!(rooms.doors.len(), 2);
+    }
+}
