@@ -315,7 +315,7 @@ pub fn run() -> anyhow::Result<()> {
                 .collect();
             let _ = writeln!(
                 md,
-                "- rooms on worse than off on at most {limit} of {} maps: {} for {} of {} planners{}",
+                "- rooms on worse than off on at most {limit} of {} maps, for every planner: {}; met by {} of {} planners{}",
                 s.maps.len(),
                 verdict(within.len() == rooms_ok.len()),
                 within.len(),

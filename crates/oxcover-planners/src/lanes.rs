@@ -478,7 +478,11 @@ fn drive_loop(
         for k in 1..l.pieces.len() {
             seq.push(l.pieces[(p + k) % l.pieces.len()].clone());
         }
-        seq.push(l.pieces[p][..=i].to_vec());
+        // The last piece of a closed loop ends at the first cell: entered
+        // there, the loop is done; entered later, finish the first piece.
+        if (p, i) != (0, 0) {
+            seq.push(l.pieces[p][..=i].to_vec());
+        }
         seq
     } else if option == 0 {
         l.pieces.clone()
@@ -986,5 +990,81 @@ mod tests {
         // apart over the rest: far less than a cell-by-cell sweep (216).
         let total: f64 = pts.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
         assert!(total < 62.0 + 1.3 * 216.0 / 3.0, "{total}: {pts:?}");
+    }
+}
+#[cfg(test)]
+mod exact {
+    use super::*;
+    use crate::{CoverageProblem, Start};
+    use oxcover_grid::io::parse_ascii;
+    use oxcover_grid::{DiscRobot, Point};
+
+    fn plan(text: &str) -> Vec<Point> {
+        let (map, _) = parse_ascii(text).expect("valid map");
+        let problem =
+            CoverageProblem::new(&map, DiscRobot::cell_sized(1.0), Start::First).expect("problem");
+        let pts = plan_lanes(&problem.input(0), None).expect("plan");
+        // Rounded to a hundredth of a cell.
+        pts.iter()
+            .map(|p| Point::new((p.x * 100.0).round() / 100.0, (p.y * 100.0).round() / 100.0))
+            .collect()
+    }
+
+    fn pts(v: &[(f64, f64)]) -> Vec<Point> {
+        v.iter().map(|&(x, y)| Point::new(x, y)).collect()
+    }
+
+    /// A corridor one cell wide: its contour, out along the cells pushed
+    /// to the west and east walls and back (no lane fits: the tool is
+    /// half a cell), ending at the start cell.
+    #[test]
+    fn a_corridor_is_driven_out_and_back() {
+        assert_eq!(
+            plan("......"),
+            pts(&[
+                (0.5, 0.5),
+                (0.05, 0.5),
+                (5.95, 0.5),
+                (0.05, 0.5),
+                (0.5, 0.5)
+            ])
+        );
+    }
+
+    /// Two rows: one loop through the four corners, 0.45 of a cell into
+    /// each corner cell, back to the start cell.
+    #[test]
+    fn a_two_row_room_is_one_loop_through_its_corners() {
+        assert_eq!(
+            plan("...\n..."),
+            pts(&[
+                (0.5, 1.5),
+                (0.05, 1.95),
+                (2.95, 1.95),
+                (2.95, 0.05),
+                (0.05, 0.05),
+                (0.05, 1.95),
+                (0.5, 1.5)
+            ])
+        );
+    }
+
+    /// A ring round a two-cell block: every ring cell is on the outer
+    /// contour, so the block's own contour is not traced again: one loop
+    /// through the four outer corners.
+    #[test]
+    fn a_ring_is_one_loop() {
+        assert_eq!(
+            plan("....\n.##.\n...."),
+            pts(&[
+                (0.5, 2.5),
+                (0.05, 2.95),
+                (3.95, 2.95),
+                (3.95, 0.05),
+                (0.05, 0.05),
+                (0.05, 2.95),
+                (0.5, 2.5)
+            ])
+        );
     }
 }
