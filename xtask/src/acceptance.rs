@@ -38,7 +38,7 @@ const MIN_COVERAGE: f64 = 0.99;
 const QUADRATIC: [(&str, usize); 2] = [("full-dtc", 20_000), ("grid-cover", 50_000)];
 
 /// The coverage-cell count above which this task skips `planner`, if it
-/// is one of the [`QUADRATIC`] ones.
+/// is one of the quadratic ones (`full-dtc` and `grid-cover`).
 #[must_use]
 pub fn quadratic_limit(planner: &str) -> Option<usize> {
     QUADRATIC.iter().find(|q| q.0 == planner).map(|q| q.1)

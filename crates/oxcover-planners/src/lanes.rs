@@ -33,7 +33,7 @@
 //! costs are estimated seconds.
 //!
 //! Links that are not straight and clear take the shortest route,
-//! straightened ([`crate::metre_path`]); every segment is checked by exact
+//! straightened (string pulling over an A* route); every segment is checked by exact
 //! traversal, so the path never leaves the plannable cells. A last pass
 //! visits any coverage cell still uncovered, nearest first, so the plan is
 //! complete on the coverage grid like every complete planner; the
