@@ -44,7 +44,7 @@ pub use border_expansion::{BorderExpansion, Road, border_expansion};
 pub use boustrophedon::boustrophedon;
 pub use quadtree::{Block, BlockChanges, QuadTree};
 pub use rectangular::{Rectangle, RectangularDecomposition, dir8_bit};
-pub use rooms::{Door, RoomParams, Rooms, morphological};
+pub use rooms::{Door, RoomParams, Rooms, merge_small_regions, morphological};
 pub use slices::{Interval, Lane, SliceDecomposition, Slices};
 pub use trapezoidal::trapezoidal;
 pub use voronoi_rooms::voronoi;

@@ -302,6 +302,71 @@ pub(crate) fn grow(free: &Grid<bool>, labels: &mut Grid<u32>, queue: &mut VecDeq
     }
 }
 
+/// Merges the regions of `labels` (1-based, 0 = none) smaller than
+/// `min_cells` into the neighbour they share the longest 4-connected border
+/// with (smallest first; ties: the larger neighbour, then the lower label).
+/// A merged region takes its neighbour's label; labels are not renumbered.
+pub fn merge_small_regions(labels: &mut Grid<u32>, min_cells: f64) {
+    let n = labels.as_slice().iter().copied().max().unwrap_or(0) as usize;
+    if n < 2 {
+        return;
+    }
+    let mut sizes = vec![0usize; n];
+    let mut contacts: Vec<BTreeMap<u32, usize>> = vec![BTreeMap::new(); n];
+    for c in labels.cells() {
+        let l = labels[c];
+        if l == 0 {
+            continue;
+        }
+        sizes[l as usize - 1] += 1;
+        for (_, nb) in labels.neighbours4(c) {
+            let m = labels[nb];
+            if m != 0 && m != l {
+                *contacts[l as usize - 1].entry(m).or_default() += 1;
+            }
+        }
+    }
+    let mut parent: Vec<u32> = (1..=n as u32).collect();
+    let find = |p: &[u32], mut u: u32| {
+        while p[u as usize - 1] != u {
+            u = p[u as usize - 1];
+        }
+        u
+    };
+    let mut order: Vec<usize> = (0..n).filter(|&i| (sizes[i] as f64) < min_cells).collect();
+    order.sort_by_key(|&i| (sizes[i], i));
+    for i in order {
+        let me = i as u32 + 1;
+        if find(&parent, me) != me || (sizes[i] as f64) >= min_cells {
+            continue;
+        }
+        let mut by_root: BTreeMap<u32, usize> = BTreeMap::new();
+        for (&v, &k) in &contacts[i] {
+            let r = find(&parent, v);
+            if r != me {
+                *by_root.entry(r).or_default() += k;
+            }
+        }
+        let best = by_root
+            .iter()
+            .max_by_key(|&(&u, &k)| (k, sizes[u as usize - 1], std::cmp::Reverse(u)));
+        if let Some((&to, _)) = best {
+            parent[i] = to;
+            sizes[to as usize - 1] += std::mem::take(&mut sizes[i]);
+            let mine = std::mem::take(&mut contacts[i]);
+            for (v, k) in mine {
+                *contacts[to as usize - 1].entry(v).or_default() += k;
+            }
+        }
+    }
+    for c in labels.cells() {
+        let l = labels[c];
+        if l != 0 {
+            labels[c] = find(&parent, l);
+        }
+    }
+}
+
 /// The doors between every pair of touching rooms.
 pub(crate) fn doors(labels: &Grid<u32>) -> Vec<Door> {
     let mut touching: BTreeMap<(u32, u32), Vec<Cell>> = BTreeMap::new();

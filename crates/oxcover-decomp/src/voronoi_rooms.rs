@@ -39,7 +39,7 @@ use std::collections::{BTreeMap, VecDeque};
 use oxcover_grid::edt::boundary_distance_sq4;
 use oxcover_grid::{Cell, Grid};
 
-use crate::rooms::{RoomParams, Rooms, doors, grow};
+use crate::rooms::{RoomParams, Rooms, doors, grow, merge_small_regions};
 
 /// How much wider (cells of clearance) than a door the spaces it joins are.
 const WIDER: f64 = 2.0;
@@ -166,7 +166,7 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
             grow(free, &mut labels, &mut queue);
         }
     }
-    merge_small(&mut labels, min_cells);
+    merge_small_regions(&mut labels, min_cells);
     // Relabel: rooms of at least the smallest area first, then the smaller
     // free regions (isolated specks no door joins), each in row-major order
     // of first cells.
@@ -263,70 +263,6 @@ fn narrows(free: &Grid<bool>, d4: &Grid<u64>, c: Cell, door_half: f64) -> bool {
         false
     };
     side(1.0) && side(-1.0)
-}
-
-/// Merges regions below `min_cells` into the neighbour they share the
-/// longest border with (smallest first; ties: the larger neighbour, then
-/// the lower label).
-fn merge_small(labels: &mut Grid<u32>, min_cells: f64) {
-    let n = labels.as_slice().iter().copied().max().unwrap_or(0) as usize;
-    if n < 2 {
-        return;
-    }
-    let mut sizes = vec![0usize; n];
-    let mut contacts: Vec<BTreeMap<u32, usize>> = vec![BTreeMap::new(); n];
-    for c in labels.cells() {
-        let l = labels[c];
-        if l == 0 {
-            continue;
-        }
-        sizes[l as usize - 1] += 1;
-        for (_, nb) in labels.neighbours4(c) {
-            let m = labels[nb];
-            if m != 0 && m != l {
-                *contacts[l as usize - 1].entry(m).or_default() += 1;
-            }
-        }
-    }
-    let mut parent: Vec<u32> = (1..=n as u32).collect();
-    let find = |p: &[u32], mut u: u32| {
-        while p[u as usize - 1] != u {
-            u = p[u as usize - 1];
-        }
-        u
-    };
-    let mut order: Vec<usize> = (0..n).filter(|&i| (sizes[i] as f64) < min_cells).collect();
-    order.sort_by_key(|&i| (sizes[i], i));
-    for i in order {
-        let me = i as u32 + 1;
-        if find(&parent, me) != me || (sizes[i] as f64) >= min_cells {
-            continue;
-        }
-        let mut by_root: BTreeMap<u32, usize> = BTreeMap::new();
-        for (&v, &k) in &contacts[i] {
-            let r = find(&parent, v);
-            if r != me {
-                *by_root.entry(r).or_default() += k;
-            }
-        }
-        let best = by_root
-            .iter()
-            .max_by_key(|&(&u, &k)| (k, sizes[u as usize - 1], std::cmp::Reverse(u)));
-        if let Some((&to, _)) = best {
-            parent[i] = to;
-            sizes[to as usize - 1] += std::mem::take(&mut sizes[i]);
-            let mine = std::mem::take(&mut contacts[i]);
-            for (v, k) in mine {
-                *contacts[to as usize - 1].entry(v).or_default() += k;
-            }
-        }
-    }
-    for c in labels.cells() {
-        let l = labels[c];
-        if l != 0 {
-            labels[c] = find(&parent, l);
-        }
-    }
 }
 
 #[cfg(test)]

@@ -14,8 +14,7 @@
 //! centroid), then an open tour ([`crate::tour::open_tour`]: exact up to a
 //! dozen units, nearest neighbour with 2-opt and Or-opt beyond).
 
-use std::collections::BTreeMap;
-
+use oxcover_decomp::merge_small_regions;
 use oxcover_distance::Wavefront;
 use oxcover_grid::{Cell, Grid};
 
@@ -86,73 +85,21 @@ impl RoomUnits {
     }
 
     fn merge_small(&mut self, min_cells: usize) {
+        merge_small_regions(&mut self.labels, min_cells as f64);
+        // Renumber compactly in row-major order of first cells.
         let n = self.sizes.len();
-        if n < 2 {
-            return;
-        }
-        // Border contacts between units, counted once: contacts[u - 1][v] =
-        // 4-adjacent cell pairs between unit u and unit v.
-        let mut contacts: Vec<BTreeMap<u32, usize>> = vec![BTreeMap::new(); n];
-        for c in self.labels.cells() {
-            let l = self.labels[c];
-            if l == 0 {
-                continue;
-            }
-            for (_, nb) in self.labels.neighbours4(c) {
-                let m = self.labels[nb];
-                if m != 0 && m != l {
-                    *contacts[l as usize - 1].entry(m).or_default() += 1;
-                }
-            }
-        }
-        let mut order: Vec<usize> = (0..n).filter(|&i| self.sizes[i] < min_cells).collect();
-        order.sort_by_key(|&i| (self.sizes[i], i));
-        let mut target: Vec<u32> = (1..=n as u32).collect();
-        let find = |t: &[u32], mut u: u32| {
-            while t[u as usize - 1] != u {
-                u = t[u as usize - 1];
-            }
-            u
-        };
-        for i in order {
-            let me = i as u32 + 1;
-            if find(&target, me) != me || self.sizes[i] >= min_cells {
-                continue;
-            }
-            let mut by_root: BTreeMap<u32, usize> = BTreeMap::new();
-            for (&v, &k) in &contacts[i] {
-                let r = find(&target, v);
-                if r != me {
-                    *by_root.entry(r).or_default() += k;
-                }
-            }
-            let best = by_root
-                .iter()
-                .max_by_key(|&(&u, &k)| (k, self.sizes[u as usize - 1], std::cmp::Reverse(u)));
-            if let Some((&to, _)) = best {
-                target[i] = to;
-                let moved = std::mem::take(&mut self.sizes[i]);
-                self.sizes[to as usize - 1] += moved;
-                let mine = std::mem::take(&mut contacts[i]);
-                for (v, k) in mine {
-                    *contacts[to as usize - 1].entry(v).or_default() += k;
-                }
-            }
-        }
-        // Relabel compactly in row-major order of first cells.
         let mut fresh = vec![0u32; n + 1];
         let mut sizes = Vec::new();
         for c in self.labels.cells() {
-            let l = self.labels[c];
+            let l = self.labels[c] as usize;
             if l == 0 {
                 continue;
             }
-            let r = find(&target, l) as usize;
-            if fresh[r] == 0 {
+            if fresh[l] == 0 {
                 sizes.push(0);
-                fresh[r] = sizes.len() as u32;
+                fresh[l] = sizes.len() as u32;
             }
-            let id = fresh[r];
+            let id = fresh[l];
             sizes[id as usize - 1] += 1;
             self.labels[c] = id;
         }
