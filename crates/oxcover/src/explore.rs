@@ -334,15 +334,36 @@ pub fn trace_csv(e: &Exploration) -> String {
 /// # Errors
 /// [`Error::Internal`] if serialisation fails.
 pub fn graph_text(graph: &ReebGraph, path: &Path) -> Result<String> {
-    let json = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("json"));
-    if json {
-        serde_json::to_string_pretty(graph)
-            .map_err(|e| Error::Internal(format!("graph serialisation failed: {e}")))
-    } else {
-        ron::ser::to_string_pretty(graph, ron::ser::PrettyConfig::default())
-            .map_err(|e| Error::Internal(format!("graph serialisation failed: {e}")))
+    match graph_format(path)? {
+        GraphFormat::Json => serde_json::to_string_pretty(graph)
+            .map_err(|e| Error::Internal(format!("graph serialisation failed: {e}"))),
+        GraphFormat::Ron => ron::ser::to_string_pretty(graph, ron::ser::PrettyConfig::default())
+            .map_err(|e| Error::Internal(format!("graph serialisation failed: {e}"))),
+    }
+}
+
+/// How a graph file is written, by its extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GraphFormat {
+    /// `.json`.
+    Json,
+    /// `.ron`.
+    Ron,
+}
+
+/// The format of a graph file named `path`.
+///
+/// # Errors
+/// [`Error::BadParameter`] naming `--graph` unless the name ends in `.json`
+/// or `.ron` (any case).
+pub fn graph_format(path: &Path) -> Result<GraphFormat> {
+    match path.extension().and_then(|e| e.to_str()) {
+        Some(e) if e.eq_ignore_ascii_case("json") => Ok(GraphFormat::Json),
+        Some(e) if e.eq_ignore_ascii_case("ron") => Ok(GraphFormat::Ron),
+        _ => Err(Error::BadParameter {
+            name: "--graph",
+            value: path.display().to_string(),
+            expected: "a file name ending in .json or .ron".into(),
+        }),
     }
 }

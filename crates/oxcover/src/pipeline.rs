@@ -62,11 +62,16 @@ pub fn planners() -> Vec<PlannerInfo> {
 /// `oxcover explore`); an option the planner does not take ([`oxcover_planners::Error::OptionNotTaken`]).
 pub fn planner(name: &str, options: &PlannerOptions) -> Result<Arc<dyn Planner>> {
     oxcover_planners::build(name, options).map_err(|e| match e {
+        oxcover_planners::Error::UnknownPlanner(_) if name == "sensor-bcd" => Error::BadParameter {
+            name: "--planner",
+            value: name.to_string(),
+            expected: "a grid planner: sensor-bcd covers unknown worlds it senses, run it with `oxcover explore WORLD.ron`".into(),
+        },
         oxcover_planners::Error::UnknownPlanner(_) => Error::BadParameter {
             name: "--planner",
             value: name.to_string(),
             expected: format!(
-                "one of: {}",
+                "one of: {} (sensor-bcd runs with `oxcover explore`)",
                 registry().map(|p| p.name()).collect::<Vec<_>>().join(", ")
             ),
         },

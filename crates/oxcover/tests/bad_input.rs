@@ -488,3 +488,84 @@ fn help_and_version_exit_0() {
         assert!(!out.stdout.is_empty());
     }
 }
+
+/// Output that cannot be written is an error (exit 1, one line), not a
+/// silent success; a reader closing the pipe early is no error.
+#[test]
+fn stdout_write_errors_are_reported() {
+    let full = Path::new("/dev/full");
+    if !full.exists() {
+        return;
+    }
+    let map = fixtures()
+        .join("navigation_tutorials/lse_arena.yaml")
+        .display()
+        .to_string();
+    for args in [
+        vec!["planners"],
+        vec!["info", &map],
+        vec!["plan", &map, "--planner", "dtc"],
+    ] {
+        let sink = std::fs::OpenOptions::new()
+            .write(true)
+            .open(full)
+            .expect("/dev/full");
+        let out = Command::new(bin())
+            .args(&args)
+            .stdout(sink)
+            .output()
+            .expect("run oxcover");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+        assert!(
+            err.contains("could not write to standard output") && err.lines().count() == 1,
+            "{args:?}: {err}"
+        );
+    }
+    // A pipe closed by its reader: quiet success.
+    let mut child = Command::new(bin())
+        .arg("planners")
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("run oxcover");
+    drop(child.stdout.take());
+    let out = child.wait_with_output().expect("wait");
+    assert_eq!(out.status.code(), Some(0));
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// `explore --graph` refuses a name it would not write as asked, before
+/// any work; `plan --planner sensor-bcd` points to `explore`.
+#[test]
+fn graph_names_and_the_sensor_planner_are_explained() {
+    let world = fixtures()
+        .join("../worlds/demir2018/fig05_polygon.ron")
+        .display()
+        .to_string();
+    let out = Command::new(bin())
+        .args(["explore", &world, "--graph", "g.txt"])
+        .output()
+        .expect("run oxcover");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--graph is `g.txt`, expected a file name ending in .json or .ron"),
+        "{err}"
+    );
+    let map = fixtures()
+        .join("navigation_tutorials/lse_arena.yaml")
+        .display()
+        .to_string();
+    let out = Command::new(bin())
+        .args(["plan", &map, "--planner", "sensor-bcd"])
+        .output()
+        .expect("run oxcover");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("oxcover explore"), "{err}");
+}

@@ -116,6 +116,8 @@ pub fn parse_map_yaml(path: &Path, text: &str) -> Result<MapYaml> {
         path: path.to_path_buf(),
         message,
     };
+    // A byte-order mark (editors on Windows write one) is not part of the YAML.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let docs = YamlLoader::load_from_str(text).map_err(|e| format(format!("invalid YAML: {e}")))?;
     let doc = docs.first().ok_or_else(|| {
         format("empty file, expected a YAML mapping with image, resolution, origin, ...".into())
@@ -363,6 +365,10 @@ mod tests {
         assert_eq!(m.resolution, 0.05);
         assert_eq!(m.origin, Point::new(-1.0, 2.0));
         assert_eq!(m.thresholds, Thresholds::default());
+        // The same file saved with a byte-order mark.
+        let bom = format!("\u{feff}{GOOD}");
+        let b = parse_map_yaml(Path::new("dir/m.yaml"), &bom).unwrap();
+        assert_eq!((b.image, b.resolution), (m.image, m.resolution));
     }
 
     #[test]

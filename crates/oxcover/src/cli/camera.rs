@@ -101,7 +101,7 @@ pub(crate) fn cmd_map_from_camera(a: &MapFromCameraArgs) -> Result<()> {
     }
     let map = mapper.map();
     oxcover::grid::io::write_ros_map(&map, &a.out)?;
-    let mut out = std::io::stdout().lock();
+    let mut out = super::out::stdout();
     let counts = map.counts();
     let _ = writeln!(
         out,

@@ -46,7 +46,7 @@ fn run_into(dir: &Path) -> Result<()> {
             report: Some(&json),
         },
     )?;
-    let mut out = std::io::stdout().lock();
+    let mut out = super::out::stdout();
     let _ = writeln!(
         out,
         "oxcover demo: DTC + boundary pass on {NAME}\n  {}x{} cells at {} m, robot radius 0.15 m, tool radius 0.15 m, planned in {:.0} ms\n",

@@ -29,6 +29,6 @@ pub(crate) fn cmd_eval(a: &EvalArgs) -> Result<()> {
     let ev = evaluate(&map, robot, &points, &time)?;
     let json = serde_json::to_string_pretty(&ev.metrics)
         .map_err(|e| Error::Internal(format!("metrics serialisation failed: {e}")))?;
-    let _ = writeln!(std::io::stdout(), "{json}");
+    let _ = writeln!(super::out::stdout(), "{json}");
     Ok(())
 }

@@ -84,8 +84,12 @@ pub(crate) struct ExploreArgs {
 }
 
 pub(crate) fn cmd_explore(a: &ExploreArgs) -> Result<()> {
-    use oxcover::explore::{explore_world, graph_text, trace_csv};
+    use oxcover::explore::{explore_world, graph_format, graph_text, trace_csv};
     use oxcover::world::sensor_bcd::Config;
+    // Refuse a graph file name before any work.
+    if let Some(f) = &a.graph {
+        graph_format(f)?;
+    }
     let world = oxcover::world::World::read(&a.world)?;
     let cfg = Config {
         robot_radius: a.robot_radius,
@@ -148,7 +152,7 @@ pub(crate) fn cmd_explore(a: &ExploreArgs) -> Result<()> {
         render_to_file(&scene, f)?;
         written.push(f.to_path_buf());
     }
-    let mut out = std::io::stdout().lock();
+    let mut out = super::out::stdout();
     let _ = writeln!(
         out,
         "sensor-bcd on {} ({} m x {} m): {} cycles, {} laps in {:.0} ms",

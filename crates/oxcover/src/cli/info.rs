@@ -42,14 +42,14 @@ pub(crate) fn cmd_info(a: &InfoArgs) -> Result<()> {
         let p = f.cell_center(s);
         rows.push(("default start".into(), format!("{},{}", p.x, p.y)));
     }
-    let mut out = std::io::stdout().lock();
+    let mut out = super::out::stdout();
     let _ = writeln!(out, "{}", a.map.display());
     let _ = write!(out, "{}", table(&rows));
     Ok(())
 }
 
 pub(crate) fn cmd_planners() {
-    let mut out = std::io::stdout().lock();
+    let mut out = super::out::stdout();
     let list = planners();
     let w = list.iter().map(|p| p.name.len()).max().unwrap_or(4);
     let _ = writeln!(out, "{:<w$}  complete  description", "name");

@@ -14,6 +14,7 @@ mod demo;
 mod eval;
 mod explore;
 mod info;
+mod out;
 mod plan;
 mod render;
 mod segment;
@@ -116,7 +117,16 @@ where
         Some(Command::MapFromCamera(a)) => camera::cmd_map_from_camera(&a),
     };
     match result {
-        Ok(()) => 0,
+        Ok(()) => match out::failure() {
+            None => 0,
+            Some(e) => {
+                let _ = writeln!(
+                    std::io::stderr(),
+                    "oxcover: error: could not write to standard output: {e}"
+                );
+                1
+            }
+        },
         Err(e) => {
             let _ = writeln!(
                 std::io::stderr(),

@@ -89,7 +89,7 @@ pub(crate) fn cmd_plan(a: &PlanArgs) -> Result<()> {
             report: a.report.as_deref(),
         },
     )?;
-    let mut out = std::io::stdout().lock();
+    let mut out = super::out::stdout();
     let _ = writeln!(
         out,
         "{} on {} ({}x{} cells, {} m/cell{}): {} waypoints in {:.0} ms",

@@ -51,6 +51,6 @@ pub(crate) fn cmd_render(a: &RenderArgs) -> Result<()> {
             render_to_file(&scene, &a.out)?;
         }
     }
-    let _ = writeln!(std::io::stdout(), "wrote {}", a.out.display());
+    let _ = writeln!(super::out::stdout(), "wrote {}", a.out.display());
     Ok(())
 }

@@ -115,7 +115,7 @@ pub(crate) fn cmd_segment(a: &SegmentArgs) -> Result<()> {
         render_to_file(&picture, f)?;
         written.push(f.clone());
     }
-    let mut out = std::io::stdout().lock();
+    let mut out = super::out::stdout();
     let _ = writeln!(
         out,
         "{}: {} rooms, {} other free regions, {} doors",

@@ -126,7 +126,7 @@ pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
         std::fs::write(f, json + "\n").map_err(|e| Error::write(f, e))?;
         written.push(f.clone());
     }
-    let mut out = std::io::stdout().lock();
+    let mut out = super::out::stdout();
     let _ = writeln!(
         out,
         "{} on {} executed by the {:?} controller: {} samples over {duration:.1} s",
