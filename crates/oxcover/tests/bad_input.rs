@@ -80,6 +80,13 @@ fn bad_inputs_exit_2_with_one_line() {
             .replace("0.0, 0.0, 0.0", "0.0, 0.0, 1.57")
             .as_bytes(),
     );
+    let huge_res = write(
+        &d,
+        "hugeres.yaml",
+        GOOD_YAML
+            .replace("resolution: 0.05", "resolution: 1e308")
+            .as_bytes(),
+    );
     let no_image = write(
         &d,
         "noimage.yaml",
@@ -176,6 +183,14 @@ fn bad_inputs_exit_2_with_one_line() {
             "missing field `resolution`",
         ),
         (vec!["plan", &yaw, "--planner", "dtc"], "field `origin`"),
+        (
+            vec!["plan", &huge_res, "--planner", "dtc"],
+            "field `resolution` is 1e308, expected a number > 0 and at most 1000",
+        ),
+        (
+            vec!["plan", &ok_pgm, "--planner", "dtc", "--resolution", "1e9"],
+            "--resolution is `1000000000`, expected at most 1000",
+        ),
         (vec!["plan", &no_image, "--planner", "dtc"], "missing.pgm"),
         (
             vec!["plan", &garbage_yaml, "--planner", "dtc"],
@@ -568,4 +583,76 @@ fn graph_names_and_the_sensor_planner_are_explained() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(err.contains("oxcover explore"), "{err}");
+}
+
+/// An output that is an input or another output is refused before any
+/// work, and the file is left as it was.
+#[test]
+fn outputs_never_overwrite_inputs_or_each_other() {
+    let d = scratch().join("clobber");
+    std::fs::create_dir_all(&d).expect("scratch");
+    let victim = d.join("victim.pgm");
+    std::fs::copy(
+        fixtures().join("navigation_tutorials/lse_arena.pgm"),
+        &victim,
+    )
+    .expect("copy");
+    let before = std::fs::read(&victim).expect("read");
+    let v = victim.display().to_string();
+    let csv = d.join("f.csv").display().to_string();
+    for (args, expected) in [
+        (
+            vec!["plan", &v, "--planner", "dtc", "--out", &v],
+            "expected a file other than the input",
+        ),
+        (
+            vec!["render", &v, "--out", &v],
+            "expected a file other than the input",
+        ),
+        (
+            vec![
+                "plan",
+                &v,
+                "--planner",
+                "dtc",
+                "--out",
+                &csv,
+                "--report",
+                &csv,
+            ],
+            "--report is",
+        ),
+        (vec!["segment", &v, "--out", &v], "--out is"),
+        (
+            vec![
+                "map-from-camera",
+                "--camera",
+                "c.ron",
+                "--profile",
+                "p.ron",
+                "--poses",
+                "p.csv",
+                "--out",
+                &v,
+            ],
+            "expected a map file name ending in .yaml",
+        ),
+    ] {
+        let out = Command::new(bin())
+            .args(&args)
+            .output()
+            .expect("run oxcover");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains(expected) && err.lines().count() == 1,
+            "{args:?}: {err}"
+        );
+        assert_eq!(
+            std::fs::read(&victim).expect("read"),
+            before,
+            "{args:?} changed the input"
+        );
+        assert!(!Path::new(&csv).exists(), "{args:?} wrote {csv}");
+    }
 }

@@ -102,6 +102,12 @@ pub struct MapYaml {
     pub thresholds: Thresholds,
 }
 
+/// Largest resolution a map may have (m per pixel): beyond it metre
+/// coordinates of cells lose their precision or overflow.
+pub const MAX_RESOLUTION: f64 = 1000.0;
+/// Largest origin coordinate (m): 10,000 km, beyond any floor.
+pub const MAX_ORIGIN: f64 = 1e7;
+
 /// Parses the text of a map yaml read from `path` (used for messages and to
 /// resolve the image path).
 ///
@@ -151,12 +157,12 @@ pub fn parse_map_yaml(path: &Path, text: &str) -> Result<MapYaml> {
     };
     let resolution_v = field("resolution")?;
     let resolution = number(resolution_v)
-        .filter(|r| r.is_finite() && *r > 0.0)
+        .filter(|r| r.is_finite() && *r > 0.0 && *r <= MAX_RESOLUTION)
         .ok_or_else(|| {
             invalid(
                 "resolution",
                 resolution_v,
-                "a finite number > 0 (metres per pixel)",
+                "a number > 0 and at most 1000 (metres per pixel)",
             )
         })?;
     let origin_v = field("origin")?;
@@ -164,12 +170,12 @@ pub fn parse_map_yaml(path: &Path, text: &str) -> Result<MapYaml> {
         Some(v) if v.len() == 3 => {
             let nums: Option<Vec<f64>> = v.iter().map(number).collect();
             match nums {
-                Some(n) if n.iter().all(|x| x.is_finite()) => n,
+                Some(n) if n.iter().all(|x| x.is_finite() && x.abs() <= MAX_ORIGIN) => n,
                 _ => {
                     return Err(invalid(
                         "origin",
                         origin_v,
-                        "[x, y, yaw] with three finite numbers",
+                        "[x, y, yaw] with three numbers of at most 10^7 (metres)",
                     ));
                 }
             }
@@ -365,6 +371,11 @@ mod tests {
         assert_eq!(m.resolution, 0.05);
         assert_eq!(m.origin, Point::new(-1.0, 2.0));
         assert_eq!(m.thresholds, Thresholds::default());
+        // Resolutions and origins that would overflow metre coordinates.
+        let huge = GOOD.replace("resolution: 0.05", "resolution: 1e308");
+        assert!(parse_map_yaml(Path::new("m.yaml"), &huge).is_err());
+        let far = GOOD.replace("[-1.0, 2, 0.0]", "[-1e300, 2, 0.0]");
+        assert!(parse_map_yaml(Path::new("m.yaml"), &far).is_err());
         // The same file saved with a byte-order mark.
         let bom = format!("\u{feff}{GOOD}");
         let b = parse_map_yaml(Path::new("dir/m.yaml"), &bom).unwrap();

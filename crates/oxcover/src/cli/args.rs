@@ -70,7 +70,15 @@ pub(crate) fn parse_start(s: &str) -> std::result::Result<Point, String> {
 pub(crate) fn read_options(resolution: Option<f64>) -> Result<ReadOptions> {
     let mut o = ReadOptions::default();
     if let Some(r) = resolution {
-        o = o.resolution(oxcover::grid::error::positive("--resolution", r)?);
+        let r = oxcover::grid::error::positive("--resolution", r)?;
+        if r > oxcover::grid::io::MAX_RESOLUTION {
+            return Err(Error::BadParameter {
+                name: "--resolution",
+                value: r.to_string(),
+                expected: "at most 1000 (metres per pixel)".into(),
+            });
+        }
+        o = o.resolution(r);
     }
     Ok(o)
 }
@@ -111,4 +119,45 @@ pub(crate) fn read_ron<T: serde::de::DeserializeOwned>(
         value: path.display().to_string(),
         expected: format!("a valid {what} file ({e})"),
     })
+}
+
+/// A path as it will be opened: canonical when it exists, else its
+/// existing folder made canonical with the file name added.
+fn resolved(p: &Path) -> std::path::PathBuf {
+    if let Ok(c) = p.canonicalize() {
+        return c;
+    }
+    let parent = p.parent().filter(|d| !d.as_os_str().is_empty());
+    let dir = parent.map_or_else(|| Path::new(".").canonicalize(), Path::canonicalize);
+    match (dir, p.file_name()) {
+        (Ok(d), Some(f)) => d.join(f),
+        _ => p.to_path_buf(),
+    }
+}
+
+/// Refuses, before any work, an output that is one of the inputs or
+/// another output (`--out f.csv --report f.csv`, `plan m.pgm --out m.pgm`):
+/// the second write would silently destroy the first file.
+pub(crate) fn distinct_outputs(inputs: &[&Path], outputs: &[(&'static str, &Path)]) -> Result<()> {
+    let ins: Vec<std::path::PathBuf> = inputs.iter().map(|p| resolved(p)).collect();
+    let mut seen: Vec<(&'static str, std::path::PathBuf)> = Vec::new();
+    for &(flag, out) in outputs {
+        let r = resolved(out);
+        if let Some(i) = ins.iter().position(|x| *x == r) {
+            return Err(Error::BadParameter {
+                name: flag,
+                value: out.display().to_string(),
+                expected: format!("a file other than the input {}", inputs[i].display()),
+            });
+        }
+        if let Some((other, _)) = seen.iter().find(|(_, x)| *x == r) {
+            return Err(Error::BadParameter {
+                name: flag,
+                value: out.display().to_string(),
+                expected: format!("a file other than the one {other} writes"),
+            });
+        }
+        seen.push((flag, r));
+    }
+    Ok(())
 }

@@ -8,7 +8,7 @@ use oxcover::grid::Point;
 use oxcover::render::{Scene, render_to_file};
 use oxcover::{Error, Result};
 
-use super::args::read_ron;
+use super::args::{distinct_outputs, read_ron};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum VisibilityArg {
@@ -85,6 +85,20 @@ pub(crate) fn cmd_map_from_camera(a: &MapFromCameraArgs) -> Result<()> {
         ..MappingConfig::default()
     }
     .checked()?;
+    // The image is written beside the yaml under the yaml's name: an `--out`
+    // that is not a yaml would be overwritten by that image's yaml.
+    if a.out.extension().and_then(|e| e.to_str()) != Some("yaml") {
+        return Err(Error::BadParameter {
+            name: "--out",
+            value: a.out.display().to_string(),
+            expected: "a map file name ending in .yaml (its image is written beside it as .pgm)"
+                .into(),
+        });
+    }
+    let image = a.out.with_extension("pgm");
+    let mut outs: Vec<(&'static str, &Path)> = vec![("--out", &a.out), ("--out's image", &image)];
+    outs.extend(a.png.as_deref().map(|p| ("--png", p)));
+    distinct_outputs(&[&a.camera, &a.profile, &a.poses], &outs)?;
     let camera: Camera = read_ron(&a.camera, "camera")?;
     camera.check().map_err(|e| in_file(&a.camera, &e))?;
     let profile: Profile = read_ron(&a.profile, "profile")?;

@@ -8,7 +8,7 @@ use oxcover::render::{Scene, render_to_file};
 use oxcover::report::{metric_rows, table};
 use oxcover::{Error, Result};
 
-use super::args::parse_start;
+use super::args::{distinct_outputs, parse_start};
 
 #[derive(Debug, clap::Args)]
 pub(crate) struct ExploreArgs {
@@ -86,10 +86,23 @@ pub(crate) struct ExploreArgs {
 pub(crate) fn cmd_explore(a: &ExploreArgs) -> Result<()> {
     use oxcover::explore::{explore_world, graph_format, graph_text, trace_csv};
     use oxcover::world::sensor_bcd::Config;
-    // Refuse a graph file name before any work.
+    // Refuse a graph file name, or outputs that would overwrite the world
+    // or each other, before any work.
     if let Some(f) = &a.graph {
         graph_format(f)?;
     }
+    let outs: Vec<(&'static str, &std::path::Path)> = [
+        ("--out", a.out.as_deref()),
+        ("--graph", a.graph.as_deref()),
+        ("--map", a.map.as_deref()),
+        ("--svg", a.svg.as_deref()),
+        ("--png", a.png.as_deref()),
+        ("--report", a.report.as_deref()),
+    ]
+    .into_iter()
+    .filter_map(|(f, p)| p.map(|p| (f, p)))
+    .collect();
+    distinct_outputs(&[&a.world], &outs)?;
     let world = oxcover::world::World::read(&a.world)?;
     let cfg = Config {
         robot_radius: a.robot_radius,

@@ -9,7 +9,7 @@ use oxcover::pipeline::{Outputs, PlanRequest, coverage_notes, plan, planner, wri
 use oxcover::planners::{PlannerOptions, Start};
 use oxcover::report::table;
 
-use super::args::{OnOff, RobotArgs, TimeArgs, load, parse_start, robot_of};
+use super::args::{OnOff, RobotArgs, TimeArgs, distinct_outputs, load, parse_start, robot_of};
 
 #[derive(Debug, clap::Args)]
 pub(crate) struct PlanArgs {
@@ -54,8 +54,22 @@ pub(crate) struct PlanArgs {
     pub(crate) report: Option<PathBuf>,
 }
 
+/// The outputs `plan` would write, with their options.
+pub(crate) fn plan_outputs(a: &PlanArgs) -> Vec<(&'static str, &std::path::Path)> {
+    [
+        ("--out", a.out.as_deref()),
+        ("--svg", a.svg.as_deref()),
+        ("--png", a.png.as_deref()),
+        ("--report", a.report.as_deref()),
+    ]
+    .into_iter()
+    .filter_map(|(f, p)| p.map(|p| (f, p)))
+    .collect()
+}
+
 /// The map and the plan request the `plan` options describe.
 pub(crate) fn map_and_request(a: &PlanArgs) -> Result<(OccupancyGrid, PlanRequest)> {
+    distinct_outputs(&[&a.map], &plan_outputs(a))?;
     let map = load(&a.map, a.robot.resolution)?;
     let robot = robot_of(&a.robot, &map)?;
     let time = a.time.model()?;

@@ -10,7 +10,7 @@ use oxcover::report::table;
 use oxcover::rooms::{Method, SegmentOptions, door_overlay, report, scene, segment};
 use oxcover::{Error, Result};
 
-use super::args::load;
+use super::args::{distinct_outputs, load};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum MethodArg {
@@ -81,6 +81,15 @@ pub(crate) fn cmd_segment(a: &SegmentArgs) -> Result<()> {
             });
         }
     }
+    let outs: Vec<(&'static str, &std::path::Path)> = [
+        ("--out", a.out.as_deref()),
+        ("--svg", a.svg.as_deref()),
+        ("--png", a.png.as_deref()),
+    ]
+    .into_iter()
+    .filter_map(|(f, p)| p.map(|p| (f, p)))
+    .collect();
+    distinct_outputs(&[&a.map], &outs)?;
     let map = load(&a.map, a.resolution)?;
     let options = SegmentOptions {
         method: match a.method {

@@ -52,6 +52,9 @@ pub(crate) const FLOOR_CLEANER: &str = include_str!("../../assets/floor_cleaner.
 pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
     use oxcover::closed_loop::{ClosedLoop, ControllerKind, execute, to_csv};
     let p = &a.plan;
+    if let Some(spec) = &a.robot_spec {
+        super::args::distinct_outputs(&[spec], &super::plan::plan_outputs(p))?;
+    }
     let spec_text = match &a.robot_spec {
         Some(f) => std::fs::read_to_string(f).map_err(|e| Error::Read {
             path: f.clone(),
