@@ -120,7 +120,9 @@ impl RgbImage {
             path: path.display().to_string(),
             message,
         };
-        let bytes = std::fs::read(path).map_err(|e| fail(format!("cannot read it: {e}")))?;
+        let bytes =
+            oxcover_grid::io::limited::read_limited(path, oxcover_grid::io::limited::MAX_MAP_BYTES)
+                .map_err(|e| fail(format!("cannot read it: {e}")))?;
         let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes));
         reader.set_format(image::ImageFormat::Png);
         let mut limits = image::Limits::default();

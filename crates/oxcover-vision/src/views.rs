@@ -51,7 +51,11 @@ pub struct View {
 /// [`Error::Read`] when it cannot be read; [`Error::Line`] naming the line
 /// of a missing header, a short row or a non-finite number, or no view.
 pub fn read_views(path: &Path) -> Result<Vec<View>> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::Read {
+    let text = oxcover_grid::io::limited::read_limited_string(
+        path,
+        oxcover_grid::io::limited::MAX_TEXT_BYTES,
+    )
+    .map_err(|e| Error::Read {
         path: path.display().to_string(),
         message: e.to_string(),
     })?;

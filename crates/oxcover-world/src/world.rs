@@ -250,7 +250,11 @@ impl World {
     /// # Errors
     /// [`Error::World`] naming the file and what is wrong with it.
     pub fn read(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::World {
+        let text = oxcover_grid::io::limited::read_limited_string(
+            path,
+            oxcover_grid::io::limited::MAX_TEXT_BYTES,
+        )
+        .map_err(|e| Error::World {
             file: path.display().to_string(),
             message: format!("cannot read it: {e}"),
         })?;

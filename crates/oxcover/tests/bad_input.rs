@@ -656,3 +656,46 @@ fn outputs_never_overwrite_inputs_or_each_other() {
         assert!(!Path::new(&csv).exists(), "{args:?} wrote {csv}");
     }
 }
+
+/// A map, a map yaml or a path file that never ends (a link to /dev/zero)
+/// is refused with the size limit, exit 2, without reading past it.
+#[cfg(unix)]
+#[test]
+fn endless_files_are_refused_by_size() {
+    let zero = Path::new("/dev/zero");
+    if !zero.exists() {
+        return;
+    }
+    let d = scratch().join("endless");
+    std::fs::create_dir_all(&d).expect("scratch");
+    let link = |name: &str| {
+        let p = d.join(name);
+        let _ = std::fs::remove_file(&p);
+        std::os::unix::fs::symlink(zero, &p).expect("symlink");
+        p.display().to_string()
+    };
+    let (pgm, yaml, csv) = (link("m.pgm"), link("m.yaml"), link("p.csv"));
+    let map = fixtures()
+        .join("navigation_tutorials/lse_arena.yaml")
+        .display()
+        .to_string();
+    for (args, limit) in [
+        (vec!["info", pgm.as_str()], "larger than 1 GiB"),
+        (vec!["info", yaml.as_str()], "larger than 1 MiB"),
+        (
+            vec!["eval", map.as_str(), csv.as_str()],
+            "larger than 1 GiB",
+        ),
+    ] {
+        let out = Command::new(bin())
+            .args(&args)
+            .output()
+            .expect("run oxcover");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains(limit) && err.lines().count() == 1,
+            "{args:?}: {err}"
+        );
+    }
+}

@@ -8,6 +8,7 @@
 //! what was expected, never a panic.
 
 mod ascii;
+pub mod limited;
 mod movingai;
 mod pgm;
 mod raster;
@@ -130,7 +131,7 @@ pub(crate) fn decode_image(
 }
 
 pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>> {
-    std::fs::read(path).map_err(|source| Error::Io {
+    limited::read_limited(path, limited::MAX_MAP_BYTES).map_err(|source| Error::Io {
         path: path.to_path_buf(),
         source,
     })

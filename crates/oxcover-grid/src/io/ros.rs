@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 
 use yaml_rust2::{Yaml, YamlLoader};
 
-use super::{ReadOptions, decode_image, read_bytes};
+use super::{ReadOptions, decode_image};
 use crate::error::{Error, Result};
 use crate::math::Point;
 use crate::occupancy::{Occupancy, OccupancyGrid};
@@ -252,19 +252,26 @@ pub fn parse_map_yaml(path: &Path, text: &str) -> Result<MapYaml> {
 /// As [`parse_map_yaml`], plus the image's own errors; a missing image is
 /// reported against the yaml's `image` field.
 pub fn read_ros_yaml(path: &Path, options: &ReadOptions) -> Result<OccupancyGrid> {
-    let bytes = read_bytes(path)?;
+    let bytes =
+        super::limited::read_limited(path, super::limited::MAX_YAML_BYTES).map_err(|source| {
+            Error::Io {
+                path: path.to_path_buf(),
+                source,
+            }
+        })?;
     let text = String::from_utf8(bytes).map_err(|_| Error::Format {
         path: path.to_path_buf(),
         message: "not UTF-8 text, expected a ROS map yaml".into(),
     })?;
     let meta = parse_map_yaml(path, &text)?;
-    let image_bytes = std::fs::read(&meta.image).map_err(|e| Error::Format {
-        path: path.to_path_buf(),
-        message: format!(
-            "field `image` names {}, which cannot be read: {e}",
-            meta.image.display()
-        ),
-    })?;
+    let image_bytes = super::limited::read_limited(&meta.image, super::limited::MAX_MAP_BYTES)
+        .map_err(|e| Error::Format {
+            path: path.to_path_buf(),
+            message: format!(
+                "field `image` names {}, which cannot be read: {e}",
+                meta.image.display()
+            ),
+        })?;
     let cells = decode_image(
         &meta.image,
         &image_bytes,

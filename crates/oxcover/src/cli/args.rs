@@ -110,7 +110,11 @@ pub(crate) fn read_ron<T: serde::de::DeserializeOwned>(
     path: &Path,
     what: &'static str,
 ) -> Result<T> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::Read {
+    let text = oxcover::grid::io::limited::read_limited_string(
+        path,
+        oxcover::grid::io::limited::MAX_TEXT_BYTES,
+    )
+    .map_err(|e| Error::Read {
         path: path.to_path_buf(),
         source: e,
     })?;

@@ -56,7 +56,11 @@ pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
         super::args::distinct_outputs(&[spec], &super::plan::plan_outputs(p))?;
     }
     let spec_text = match &a.robot_spec {
-        Some(f) => std::fs::read_to_string(f).map_err(|e| Error::Read {
+        Some(f) => oxcover::grid::io::limited::read_limited_string(
+            f,
+            oxcover::grid::io::limited::MAX_TEXT_BYTES,
+        )
+        .map_err(|e| Error::Read {
             path: f.clone(),
             source: e,
         })?,
