@@ -80,6 +80,17 @@ fn bad_inputs_exit_2_with_one_line() {
             .replace("0.0, 0.0, 0.0", "0.0, 0.0, 1.57")
             .as_bytes(),
     );
+    let mut bomb = String::from("extra: &a [x, x, x, x, x, x, x, x, x]\n");
+    for k in 1..10 {
+        let prev = if k == 1 {
+            "*a".to_string()
+        } else {
+            format!("*b{}", k - 1)
+        };
+        bomb += &format!("b{k}: &b{k} [{}]\n", vec![prev; 9].join(", "));
+    }
+    bomb += GOOD_YAML;
+    let alias_bomb = write(&d, "bomb.yaml", bomb.as_bytes());
     let huge_res = write(
         &d,
         "hugeres.yaml",
@@ -183,6 +194,10 @@ fn bad_inputs_exit_2_with_one_line() {
             "missing field `resolution`",
         ),
         (vec!["plan", &yaw, "--planner", "dtc"], "field `origin`"),
+        (
+            vec!["info", &alias_bomb],
+            "YAML aliases (`*name`, 81 of them) are not accepted",
+        ),
         (
             vec!["plan", &huge_res, "--planner", "dtc"],
             "field `resolution` is 1e308, expected a number > 0 and at most 1000",

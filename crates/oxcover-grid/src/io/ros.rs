@@ -102,6 +102,17 @@ pub struct MapYaml {
     pub thresholds: Thresholds,
 }
 
+/// Counts the aliases of a YAML event stream.
+struct AliasCount(usize);
+
+impl yaml_rust2::parser::EventReceiver for AliasCount {
+    fn on_event(&mut self, ev: yaml_rust2::parser::Event) {
+        if matches!(ev, yaml_rust2::parser::Event::Alias(_)) {
+            self.0 += 1;
+        }
+    }
+}
+
 /// Largest resolution a map may have (m per pixel): beyond it metre
 /// coordinates of cells lose their precision or overflow.
 pub const MAX_RESOLUTION: f64 = 1000.0;
@@ -124,6 +135,19 @@ pub fn parse_map_yaml(path: &Path, text: &str) -> Result<MapYaml> {
     };
     // A byte-order mark (editors on Windows write one) is not part of the YAML.
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    // Aliases first, on the event stream (nothing is expanded there): a few
+    // hundred bytes of nested aliases expand to gigabytes when loaded, and
+    // the map_server format needs none.
+    let mut aliases = AliasCount(0);
+    yaml_rust2::parser::Parser::new_from_str(text)
+        .load(&mut aliases, true)
+        .map_err(|e| format(format!("invalid YAML: {e}")))?;
+    if aliases.0 > 0 {
+        return Err(format(format!(
+            "YAML aliases (`*name`, {} of them) are not accepted in a map yaml: write the values out",
+            aliases.0
+        )));
+    }
     let docs = YamlLoader::load_from_str(text).map_err(|e| format(format!("invalid YAML: {e}")))?;
     let doc = docs.first().ok_or_else(|| {
         format("empty file, expected a YAML mapping with image, resolution, origin, ...".into())
@@ -383,6 +407,27 @@ mod tests {
         assert!(parse_map_yaml(Path::new("m.yaml"), &huge).is_err());
         let far = GOOD.replace("[-1.0, 2, 0.0]", "[-1e300, 2, 0.0]");
         assert!(parse_map_yaml(Path::new("m.yaml"), &far).is_err());
+        // An alias bomb: refused before anything is expanded.
+        let mut bomb = String::from("a: &a [x, x, x, x, x, x, x, x, x]\n");
+        for k in 1..9 {
+            bomb += &format!(
+                "b{k}: &b{k} [{}]\n",
+                vec![
+                    if k == 1 {
+                        "*a".to_string()
+                    } else {
+                        format!("*b{}", k - 1)
+                    };
+                    9
+                ]
+                .join(", ")
+            );
+        }
+        bomb += GOOD;
+        let e = parse_map_yaml(Path::new("m.yaml"), &bomb)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("aliases"), "{e}");
         // The same file saved with a byte-order mark.
         let bom = format!("\u{feff}{GOOD}");
         let b = parse_map_yaml(Path::new("dir/m.yaml"), &bom).unwrap();
