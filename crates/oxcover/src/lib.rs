@@ -50,6 +50,7 @@ pub mod closed_loop;
 pub mod error;
 pub mod explore;
 pub mod metrics;
+pub mod output;
 pub mod path;
 pub mod pipeline;
 pub mod render;

@@ -60,7 +60,7 @@ pub fn to_csv(points: &[Point]) -> String {
 /// # Errors
 /// [`Error::Write`] when the file cannot be written.
 pub fn write_csv(path: &Path, points: &[Point]) -> Result<()> {
-    std::fs::write(path, to_csv(points)).map_err(|e| Error::write(path, e))
+    crate::output::write_file(path, to_csv(points).into_bytes())
 }
 
 /// Reads a path file.

@@ -27,8 +27,9 @@ use serde::Serialize;
 
 use crate::error::{Error, Result};
 use crate::metrics::{Evaluation, coverage_of, evaluate_problem};
-use crate::path::{cells_to_points, write_csv};
-use crate::render::{Scene, render_to_file};
+use crate::output::write_files;
+use crate::path::{cells_to_points, to_csv};
+use crate::render::{Scene, render_bytes};
 use crate::report::{BoundaryStats, PlanParameters, PlanReport, metric_rows};
 
 /// A registered planner, as `oxcover planners` lists it.
@@ -576,10 +577,12 @@ pub struct Outputs<'a> {
 }
 
 /// Writes the CSV, pictures and report of a plan of `request` on `map`
-/// (named `map_name`); returns the files written.
+/// (named `map_name`), all of them or none ([`crate::output::write_files`]);
+/// returns the files written.
 ///
 /// # Errors
-/// [`Error::Write`] naming the file that could not be written.
+/// [`Error::Write`] naming the file that could not be written (then none
+/// is); a bad picture extension.
 pub fn write_outputs(
     map: &OccupancyGrid,
     map_name: &str,
@@ -587,10 +590,9 @@ pub fn write_outputs(
     outcome: &PlanOutcome,
     out: &Outputs<'_>,
 ) -> Result<Vec<PathBuf>> {
-    let mut written = Vec::new();
+    let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     if let Some(p) = out.csv {
-        write_csv(p, &outcome.points)?;
-        written.push(p.to_path_buf());
+        files.push((p.to_path_buf(), to_csv(&outcome.points).into_bytes()));
     }
     let ev = &outcome.evaluation;
     let title = format!("{} - {}", short_name(map_name), request.planner.name());
@@ -606,17 +608,15 @@ pub fn write_outputs(
         rows: metric_rows(&ev.metrics),
     };
     for p in [out.svg, out.png].into_iter().flatten() {
-        render_to_file(&scene, p)?;
-        written.push(p.to_path_buf());
+        files.push((p.to_path_buf(), render_bytes(&scene, p)?));
     }
     if let Some(p) = out.report {
         let report = outcome.report(map, map_name, request);
         let json = serde_json::to_string_pretty(&report)
             .map_err(|e| Error::Internal(format!("report serialisation failed: {e}")))?;
-        std::fs::write(p, json + "\n").map_err(|e| Error::write(p, e))?;
-        written.push(p.to_path_buf());
+        files.push((p.to_path_buf(), (json + "\n").into_bytes()));
     }
-    Ok(written)
+    write_files(files)
 }
 
 /// Hints about what a plan leaves out: free cells it cannot cover, and a

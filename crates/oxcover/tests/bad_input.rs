@@ -714,3 +714,64 @@ fn endless_files_are_refused_by_size() {
         );
     }
 }
+
+/// A failed output leaves none of the others behind (plan writes its files
+/// as one set), and no temporary file either.
+#[test]
+fn outputs_are_whole_or_absent() {
+    let d = scratch().join("whole");
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).expect("scratch");
+    let map = fixtures()
+        .join("navigation_tutorials/lse_arena.yaml")
+        .display()
+        .to_string();
+    let csv = d.join("p.csv").display().to_string();
+    let json = d.join("r.json").display().to_string();
+    let png = d.join("missing/x.png").display().to_string();
+    let out = Command::new(bin())
+        .args([
+            "plan",
+            &map,
+            "--planner",
+            "dtc",
+            "--out",
+            &csv,
+            "--report",
+            &json,
+            "--png",
+            &png,
+        ])
+        .output()
+        .expect("run oxcover");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("x.png") && err.lines().count() == 1, "{err}");
+    let left: Vec<_> = std::fs::read_dir(&d)
+        .expect("read scratch")
+        .filter_map(|e| e.ok().map(|e| e.file_name()))
+        .collect();
+    assert!(left.is_empty(), "left behind: {left:?}");
+    // The same command with a writable picture writes all three.
+    let png = d.join("x.png").display().to_string();
+    let out = Command::new(bin())
+        .args([
+            "plan",
+            &map,
+            "--planner",
+            "dtc",
+            "--out",
+            &csv,
+            "--report",
+            &json,
+            "--png",
+            &png,
+        ])
+        .output()
+        .expect("run oxcover");
+    assert!(out.status.success());
+    for f in [&csv, &json, &png] {
+        assert!(Path::new(f).exists(), "{f}");
+    }
+    assert_eq!(std::fs::read_dir(&d).expect("read scratch").count(), 3);
+}

@@ -119,7 +119,7 @@ pub(crate) fn cmd_explore(a: &ExploreArgs) -> Result<()> {
     let report = outcome.report(&world, &cfg);
     let mut written = Vec::new();
     let mut write = |f: &Path, text: &[u8]| -> Result<()> {
-        std::fs::write(f, text).map_err(|err| Error::write(f, err))?;
+        oxcover::output::write_file(f, text.into())?;
         written.push(f.to_path_buf());
         Ok(())
     };

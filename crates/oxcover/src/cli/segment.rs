@@ -5,7 +5,7 @@ use std::io::Write as _;
 use std::path::PathBuf;
 
 use clap::ValueEnum;
-use oxcover::render::render_to_file;
+use oxcover::render::render_bytes;
 use oxcover::report::table;
 use oxcover::rooms::{Method, SegmentOptions, door_overlay, report, scene, segment};
 use oxcover::{Error, Result};
@@ -102,14 +102,13 @@ pub(crate) fn cmd_segment(a: &SegmentArgs) -> Result<()> {
     };
     let rooms = segment(&map, &options)?;
     let rep = report(&map, &rooms, &options);
-    let mut written = Vec::new();
+    let mut files: Vec<(std::path::PathBuf, Vec<u8>)> = Vec::new();
     let json_out = a.out.as_ref().filter(|_| out_ext == Some("json"));
     let picture_out = a.out.as_ref().filter(|_| out_ext != Some("json"));
     if let Some(f) = json_out {
         let json = serde_json::to_string_pretty(&rep)
             .map_err(|e| Error::Internal(format!("rooms serialisation failed: {e}")))?;
-        std::fs::write(f, json + "\n").map_err(|e| Error::write(f, e))?;
-        written.push(f.clone());
+        files.push((f.clone(), (json + "\n").into_bytes()));
     }
     let overlay = door_overlay(&map, &rooms);
     let title = format!(
@@ -121,9 +120,10 @@ pub(crate) fn cmd_segment(a: &SegmentArgs) -> Result<()> {
         .into_iter()
         .flatten()
     {
-        render_to_file(&picture, f)?;
-        written.push(f.clone());
+        files.push((f.clone(), render_bytes(&picture, f)?));
     }
+    // All of them or none.
+    let written = oxcover::output::write_files(files)?;
     let mut out = super::out::stdout();
     let _ = writeln!(
         out,

@@ -92,7 +92,7 @@ pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
     let run = execute(&map, robot, &outcome.points, &cfg)?;
     let mut written = Vec::new();
     if let Some(f) = &p.out {
-        std::fs::write(f, to_csv(&run.samples)).map_err(|e| Error::write(f, e))?;
+        oxcover::output::write_file(f, to_csv(&run.samples).into_bytes())?;
         written.push(f.clone());
     }
     let executed: Vec<Point> = run
@@ -130,7 +130,7 @@ pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
         );
         let json = serde_json::to_string_pretty(&report)
             .map_err(|e| Error::Internal(format!("report serialisation failed: {e}")))?;
-        std::fs::write(f, json + "\n").map_err(|e| Error::write(f, e))?;
+        oxcover::output::write_file(f, (json + "\n").into_bytes())?;
         written.push(f.clone());
     }
     let mut out = super::out::stdout();

@@ -341,23 +341,29 @@ pub(crate) fn arrow_marks(px: &[(f64, f64)], spacing: f64) -> Vec<(f64, f64, f64
 /// [`Error::BadParameter`] for another extension, [`Error::Write`] when the file
 /// cannot be written.
 pub fn render_to_file(scene: &Scene<'_>, out: &Path) -> Result<()> {
+    crate::output::write_file(out, render_bytes(scene, out)?)
+}
+
+/// The picture of `scene` in the format `out`'s extension names.
+///
+/// # Errors
+/// [`Error::BadParameter`] naming `--out` for an extension other than
+/// `.svg` or `.png`; a rendering fault.
+pub fn render_bytes(scene: &Scene<'_>, out: &Path) -> Result<Vec<u8>> {
     let ext = out
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase)
         .unwrap_or_default();
-    let bytes = match ext.as_str() {
-        "svg" => render_svg(scene)?.into_bytes(),
-        "png" => render_png(scene)?,
-        _ => {
-            return Err(Error::BadParameter {
-                name: "--out",
-                value: out.display().to_string(),
-                expected: "a file name ending in .svg or .png".into(),
-            });
-        }
-    };
-    std::fs::write(out, bytes).map_err(|e| Error::write(out, e))
+    match ext.as_str() {
+        "svg" => Ok(render_svg(scene)?.into_bytes()),
+        "png" => render_png(scene),
+        _ => Err(Error::BadParameter {
+            name: "--out",
+            value: out.display().to_string(),
+            expected: "a file name ending in .svg or .png".into(),
+        }),
+    }
 }
 
 #[cfg(test)]

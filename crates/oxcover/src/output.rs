@@ -1,0 +1,90 @@
+//! Writing outputs whole or not at all.
+//!
+//! [`write_files`] writes every file of a set aside first (a hidden
+//! temporary file in the target's own folder), and only when all of them
+//! are written renames them into place; if any write fails, the temporary
+//! files are removed and no target is touched. A rename within one folder
+//! is atomic, so a reader (or a run interrupted by SIGINT or SIGTERM) sees
+//! either the old file or the whole new one, never half of it.
+
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+
+use crate::error::{Error, Result};
+
+/// The hidden temporary name of `target` for this process.
+fn temporary(target: &Path, k: usize) -> PathBuf {
+    let name = target
+        .file_name()
+        .map_or_else(|| "output".into(), |n| n.to_string_lossy().into_owned());
+    target.with_file_name(format!(".{name}.oxcover-{}-{k}.tmp", std::process::id()))
+}
+
+/// Writes `files` (path, contents) whole or not at all; returns the paths.
+///
+/// # Errors
+/// [`Error::Write`] naming the first file that could not be written (its
+/// folder missing or read-only, a device that refuses writes, a full disk);
+/// nothing is left behind then.
+pub fn write_files(files: Vec<(PathBuf, Vec<u8>)>) -> Result<Vec<PathBuf>> {
+    let mut staged: Vec<(PathBuf, PathBuf)> = Vec::with_capacity(files.len());
+    let cleanup = |staged: &[(PathBuf, PathBuf)]| {
+        for (_, tmp) in staged {
+            let _ = std::fs::remove_file(tmp);
+        }
+    };
+    for (k, (target, bytes)) in files.into_iter().enumerate() {
+        let tmp = temporary(&target, k);
+        let written = std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)
+            .and_then(|mut f| {
+                f.write_all(&bytes)?;
+                f.sync_all()
+            });
+        if let Err(e) = written {
+            let _ = std::fs::remove_file(&tmp);
+            cleanup(&staged);
+            return Err(Error::write(&target, e));
+        }
+        staged.push((target, tmp));
+    }
+    for (i, (target, tmp)) in staged.iter().enumerate() {
+        if let Err(e) = std::fs::rename(tmp, target) {
+            cleanup(&staged[i..]);
+            return Err(Error::write(target, e));
+        }
+    }
+    Ok(staged.into_iter().map(|(t, _)| t).collect())
+}
+
+/// Writes one file whole or not at all ([`write_files`]).
+///
+/// # Errors
+/// As [`write_files`].
+pub fn write_file(path: &Path, bytes: Vec<u8>) -> Result<()> {
+    write_files(vec![(path.to_path_buf(), bytes)]).map(|_| ())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_failed_set_leaves_nothing() {
+        let dir = std::env::temp_dir().join(format!("oxcover-output-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let a = dir.join("a.txt");
+        let missing = dir.join("no/such/folder/b.txt");
+        assert!(write_files(vec![(a.clone(), b"a".to_vec()), (missing, b"b".to_vec())]).is_err());
+        assert!(!a.exists());
+        assert_eq!(
+            std::fs::read_dir(&dir).unwrap().count(),
+            0,
+            "temporary files left"
+        );
+        write_file(&a, b"whole".to_vec()).unwrap();
+        assert_eq!(std::fs::read(&a).unwrap(), b"whole");
+    }
+}
