@@ -160,6 +160,25 @@ pub fn execute(
             "a relative wheel-speed error in [0, 0.5)",
         ));
     }
+    // The reference must be drivable: at its top speed, and turning in place
+    // at its top turn rate, no wheel may need more than the drive allows
+    // (else the robot lags ever further behind and the run "succeeds" with
+    // almost nothing covered).
+    let d = cfg.spec.drive;
+    let need = cfg
+        .limits
+        .v_max
+        .max(cfg.limits.omega_max * d.wheel_base / 2.0);
+    if d.max_wheel_speed.is_nan() || d.max_wheel_speed < need {
+        return Err(Error::BadParameter {
+            name: "robot spec max_wheel_speed",
+            value: d.max_wheel_speed.to_string(),
+            expected: format!(
+                "at least {need} m/s, what the reference's top speed {} m/s and turn rate {} rad/s ask of a wheel",
+                cfg.limits.v_max, cfg.limits.omega_max
+            ),
+        });
+    }
     let timing = Timing::new(points, cfg.limits).map_err(|e| Error::BadParameter {
         name: "limits",
         value: format!("{:?}", cfg.limits),

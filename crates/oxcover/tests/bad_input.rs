@@ -91,6 +91,14 @@ fn bad_inputs_exit_2_with_one_line() {
     }
     bomb += GOOD_YAML;
     let alias_bomb = write(&d, "bomb.yaml", bomb.as_bytes());
+    let slow_spec = write(
+        &d,
+        "slow.ron",
+        std::fs::read_to_string(fixtures().join("../robots/floor_cleaner.ron"))
+            .expect("bundled robot")
+            .replace("max_wheel_speed: 0.5", "max_wheel_speed: 1e-9")
+            .as_bytes(),
+    );
     let huge_res = write(
         &d,
         "hugeres.yaml",
@@ -194,6 +202,17 @@ fn bad_inputs_exit_2_with_one_line() {
             "missing field `resolution`",
         ),
         (vec!["plan", &yaw, "--planner", "dtc"], "field `origin`"),
+        (
+            vec![
+                "simulate",
+                &good_yaml,
+                "--planner",
+                "dtc",
+                "--robot-spec",
+                &slow_spec,
+            ],
+            "robot spec max_wheel_speed is `0.000000001`, expected at least 0.3 m/s",
+        ),
         (
             vec!["info", &alias_bomb],
             "YAML aliases (`*name`, 81 of them) are not accepted",

@@ -234,6 +234,9 @@ impl Config {
     }
 }
 
+/// Most lanes (one tool width apart) across a world that [`explore`] takes on.
+pub const MAX_LANES: f64 = 10_000.0;
+
 /// The result of an exploration.
 #[derive(Clone, Debug)]
 pub struct Exploration {
@@ -269,6 +272,17 @@ pub fn explore(world: &WorldGeometry, start: Point, cfg: &Config) -> Result<Expl
             name: "start",
             value: format!("({}, {})", start.x, start.y),
             expected: "finite coordinates",
+        });
+    }
+    // Lanes one tool width apart across the world: each costs ray casts
+    // along its whole length, so a tool far narrower than the world would
+    // run for hours. Refuse it up front.
+    let lanes = world.world().width / (2.0 * cfg.tool_radius);
+    if !lanes.is_finite() || lanes > MAX_LANES {
+        return Err(Error::BadParameter {
+            name: "tool radius",
+            value: cfg.tool_radius.to_string(),
+            expected: "at least the world's width / 20000 (at most 10000 lanes across it)",
         });
     }
     let (clear, _) = world.clearance(start);
