@@ -4,6 +4,11 @@
 //! x grows to the right, y grows up, and image row 0 is the TOP row. The cell at
 //! row `r`, column `c` of an `H`-row map has its centre at
 //! `x = ox + (c + 0.5)·res`, `y = oy + (H − 1 − r + 0.5)·res`.
+//!
+//! With a yaw θ (map_server's third `origin` value) the image is rotated by
+//! θ about the origin: the centre is `(ox, oy) + R(θ)·((c + 0.5)·res,
+//! (H − 1 − r + 0.5)·res)`. Yaw 0 takes the unrotated arithmetic, so maps
+//! without a yaw give bit-identical coordinates.
 
 use crate::grid::Cell;
 use crate::math::{Point, Real};
@@ -16,6 +21,9 @@ pub struct MapFrame {
     origin: Point,
     width: usize,
     height: usize,
+    /// Rotation of the image about the origin (radians, counter-clockwise).
+    #[cfg_attr(feature = "serde", serde(default))]
+    yaw: Real,
 }
 
 impl MapFrame {
@@ -31,7 +39,64 @@ impl MapFrame {
             origin,
             width,
             height,
+            yaw: 0.0,
         }
+    }
+
+    /// The same frame with the image rotated by `yaw` radians about the
+    /// origin (the caller checks it is finite).
+    #[must_use]
+    pub fn with_yaw(mut self, yaw: Real) -> Self {
+        self.yaw = yaw;
+        self
+    }
+
+    /// The frame of the `height × width` block of cells whose top-left cell
+    /// is `corner` (the same metres for the same cells).
+    #[must_use]
+    pub fn crop(&self, corner: Cell, width: usize, height: usize) -> Self {
+        let res = self.resolution;
+        // The block's lower-left corner, in this frame.
+        let bottom = self.height - (corner.row + height);
+        let origin = self.image_to_map(corner.col as Real * res, bottom as Real * res);
+        Self {
+            resolution: res,
+            origin,
+            width,
+            height,
+            yaw: self.yaw,
+        }
+    }
+
+    /// The image's rotation about the origin (radians).
+    #[must_use]
+    pub fn yaw(&self) -> Real {
+        self.yaw
+    }
+
+    /// A point `local` of the unrotated image frame (metres from the origin)
+    /// in the map frame.
+    #[inline]
+    fn image_to_map(&self, lx: Real, ly: Real) -> Point {
+        if self.yaw == 0.0 {
+            return Point::new(self.origin.x + lx, self.origin.y + ly);
+        }
+        let (s, c) = self.yaw.sin_cos();
+        Point::new(
+            self.origin.x + c * lx - s * ly,
+            self.origin.y + s * lx + c * ly,
+        )
+    }
+
+    /// A map-frame point in the unrotated image frame (metres from the origin).
+    #[inline]
+    fn map_to_image(&self, p: &Point) -> (Real, Real) {
+        let (dx, dy) = (p.x - self.origin.x, p.y - self.origin.y);
+        if self.yaw == 0.0 {
+            return (dx, dy);
+        }
+        let (s, c) = self.yaw.sin_cos();
+        (c * dx + s * dy, -s * dx + c * dy)
     }
 
     /// A unit frame: 1 m cells, origin (0, 0).
@@ -68,9 +133,9 @@ impl MapFrame {
     #[must_use]
     pub fn cell_center(&self, cell: Cell) -> Point {
         let res = self.resolution;
-        Point::new(
-            self.origin.x + (cell.col as Real + 0.5) * res,
-            self.origin.y + ((self.height - 1 - cell.row) as Real + 0.5) * res,
+        self.image_to_map(
+            (cell.col as Real + 0.5) * res,
+            ((self.height - 1 - cell.row) as Real + 0.5) * res,
         )
     }
 
@@ -78,9 +143,9 @@ impl MapFrame {
     #[must_use]
     pub fn position(&self, row: Real, col: Real) -> Point {
         let res = self.resolution;
-        Point::new(
-            self.origin.x + (col + 0.5) * res,
-            self.origin.y + ((self.height - 1) as Real - row + 0.5) * res,
+        self.image_to_map(
+            (col + 0.5) * res,
+            ((self.height - 1) as Real - row + 0.5) * res,
         )
     }
 
@@ -88,8 +153,9 @@ impl MapFrame {
     #[must_use]
     pub fn fractional_cell(&self, p: &Point) -> (Real, Real) {
         let res = self.resolution;
-        let col = (p.x - self.origin.x) / res - 0.5;
-        let row = (self.height - 1) as Real - ((p.y - self.origin.y) / res - 0.5);
+        let (lx, ly) = self.map_to_image(p);
+        let col = lx / res - 0.5;
+        let row = (self.height - 1) as Real - (ly / res - 0.5);
         (row, col)
     }
 
@@ -102,8 +168,9 @@ impl MapFrame {
         if !(p.x.is_finite() && p.y.is_finite()) {
             return None;
         }
-        let fx = ((p.x - self.origin.x) / self.resolution).floor();
-        let fy = ((p.y - self.origin.y) / self.resolution).floor();
+        let (lx, ly) = self.map_to_image(p);
+        let fx = (lx / self.resolution).floor();
+        let fy = (ly / self.resolution).floor();
         if fx < 0.0 || fy < 0.0 || fx >= self.width as Real || fy >= self.height as Real {
             return None;
         }
@@ -112,23 +179,72 @@ impl MapFrame {
         Some(Cell::new(self.height - 1 - k, col))
     }
 
-    /// `(min, max)` corners of the mapped area in metres.
+    /// `(min, max)` corners of the mapped area in metres (of its bounding
+    /// box when the image is rotated).
     #[must_use]
     pub fn bounds(&self) -> (Point, Point) {
         let res = self.resolution;
-        (
-            self.origin,
-            Point::new(
-                self.origin.x + self.width as Real * res,
-                self.origin.y + self.height as Real * res,
-            ),
-        )
+        let (w, h) = (self.width as Real * res, self.height as Real * res);
+        if self.yaw == 0.0 {
+            return (
+                self.origin,
+                Point::new(self.origin.x + w, self.origin.y + h),
+            );
+        }
+        let corners = [
+            self.image_to_map(0.0, 0.0),
+            self.image_to_map(w, 0.0),
+            self.image_to_map(0.0, h),
+            self.image_to_map(w, h),
+        ];
+        let lo = corners
+            .iter()
+            .fold(Point::new(Real::INFINITY, Real::INFINITY), |a, c| {
+                Point::new(a.x.min(c.x), a.y.min(c.y))
+            });
+        let hi = corners.iter().fold(
+            Point::new(Real::NEG_INFINITY, Real::NEG_INFINITY),
+            |a, c| Point::new(a.x.max(c.x), a.y.max(c.y)),
+        );
+        (lo, hi)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_yaw_rotates_the_image_about_the_origin() {
+        let f = MapFrame::new(4, 3, 0.5, Point::new(-1.0, 2.0));
+        let r = f.with_yaw(std::f64::consts::FRAC_PI_2);
+        // Bottom-left cell's centre (0.25, 0.25) from the origin, turned a
+        // quarter: (-0.25, 0.25).
+        let c = r.cell_center(Cell::new(2, 0));
+        assert!(
+            (c.x - -1.25).abs() < 1e-12 && (c.y - 2.25).abs() < 1e-12,
+            "{c:?}"
+        );
+        for cell in [Cell::new(0, 0), Cell::new(1, 2), Cell::new(2, 3)] {
+            let p = r.cell_center(cell);
+            assert_eq!(r.cell_at(&p), Some(cell));
+            let (row, col) = r.fractional_cell(&p);
+            assert!((row - cell.row as f64).abs() < 1e-9 && (col - cell.col as f64).abs() < 1e-9);
+        }
+        let (lo, hi) = r.bounds();
+        assert!(
+            (lo.x - -2.5).abs() < 1e-12 && (hi.y - 4.0).abs() < 1e-12,
+            "{lo:?} {hi:?}"
+        );
+        // A crop keeps the metres of its cells.
+        let k = r.crop(Cell::new(1, 1), 2, 2);
+        assert!((k.cell_center(Cell::new(0, 0)) - r.cell_center(Cell::new(1, 1))).norm() < 1e-12);
+        // Yaw 0 is the plain frame, bit for bit.
+        assert_eq!(
+            f.with_yaw(0.0).cell_center(Cell::new(1, 1)),
+            f.cell_center(Cell::new(1, 1))
+        );
+    }
 
     #[test]
     fn centres_follow_the_contract() {

@@ -62,6 +62,14 @@ impl OccupancyGrid {
         Self::new(cells, 1.0, Point::origin())
     }
 
+    /// The same map with its image rotated by `yaw` radians about the origin
+    /// (map_server's third `origin` value, see [`MapFrame::with_yaw`]).
+    #[must_use]
+    pub fn with_yaw(mut self, yaw: Real) -> Self {
+        self.frame = self.frame.with_yaw(yaw);
+        self
+    }
+
     /// A unit-frame map from a `free` mask (`false` = occupied).
     #[must_use]
     pub fn from_free_mask(free: &Grid<bool>) -> Self {

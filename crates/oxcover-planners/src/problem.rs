@@ -210,14 +210,7 @@ impl CoverageProblem {
             reachable: reach,
             coverable,
         };
-        let res = self.frame.resolution();
-        let o = self.frame.origin();
-        let frame = MapFrame::new(
-            cw,
-            ch,
-            res,
-            Point::new(o.x + c0 as f64 * res, o.y + (h - r1) as f64 * res),
-        );
+        let frame = self.frame.crop(Cell::new(r0, c0), cw, ch);
         let coarse = CoarseGrid::new(&cells.reachable, self.coarse.block_size());
         Ok(Self {
             frame,

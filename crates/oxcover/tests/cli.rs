@@ -403,3 +403,56 @@ fn explore_writes_path_graph_map_pictures_and_report() {
     );
     assert!(std::fs::metadata(d.join("f.png")).expect("png").len() > 1000);
 }
+
+/// A map whose origin has a yaw (map_server's pose of the lower-left pixel)
+/// plans the same path as the unrotated map, turned about the origin:
+/// same metrics, every waypoint rotated.
+#[test]
+fn a_yawed_origin_turns_the_plan_with_the_map() {
+    let dir = scratch("yaw");
+    let src = fixture("navigation_tutorials/lse_arena.yaml");
+    let text = std::fs::read_to_string(&src).expect("yaml");
+    let image = Path::new(&src).with_file_name("lse_arena.pgm");
+    let plain = text.replace("lse_arena.pgm", image.to_str().expect("utf-8"));
+    let turned = plain.replace(
+        "origin: [0.000000, 0.000000, 0.000000]",
+        "origin: [1.5, -2.0, 0.7]",
+    );
+    assert_ne!(plain, turned, "the fixture's origin line changed");
+    let (a, b) = (dir.join("plain.yaml"), dir.join("turned.yaml"));
+    std::fs::write(&a, plain).expect("write");
+    std::fs::write(&b, turned).expect("write");
+    let mut runs = Vec::new();
+    for (map, csv) in [(&a, dir.join("a.csv")), (&b, dir.join("b.csv"))] {
+        let (m, c) = (map.to_str().expect("utf-8"), csv.to_str().expect("utf-8"));
+        let radii = ["--robot-radius", "0.1", "--tool-radius", "0.1"];
+        run(&[
+            &["plan", m, "--planner", "lanes", "--out", c][..],
+            &radii[..],
+        ]
+        .concat());
+        let (eval, _) = run(&[&["eval", m, c][..], &radii[..]].concat());
+        let points = oxcover::path::read_csv(&csv).expect("path");
+        runs.push((json(&eval), points));
+    }
+    let ((ea, pa), (eb, pb)) = (&runs[0], &runs[1]);
+    for k in [
+        "coverage",
+        "collisions",
+        "turns",
+        "covered_cells",
+        "coverable_cells",
+    ] {
+        assert_eq!(ea[k], eb[k], "{k}");
+    }
+    assert_eq!(eb["collisions"], 0);
+    assert_eq!(pa.len(), pb.len());
+    let (s, c) = 0.7f64.sin_cos();
+    for (p, q) in pa.iter().zip(pb) {
+        let r = (1.5 + c * p.x - s * p.y, -2.0 + s * p.x + c * p.y);
+        assert!(
+            (r.0 - q.x).abs() < 1e-9 && (r.1 - q.y).abs() < 1e-9,
+            "{p:?} -> {q:?}"
+        );
+    }
+}

@@ -96,8 +96,11 @@ pub struct MapYaml {
     pub image: PathBuf,
     /// Metres per pixel.
     pub resolution: f64,
-    /// Lower-left corner of the bottom-left pixel (yaw is required to be 0).
+    /// Lower-left corner of the bottom-left pixel.
     pub origin: Point,
+    /// Rotation of the image about `origin` (radians, the third `origin`
+    /// value): map_server's pose of the lower-left pixel.
+    pub yaw: f64,
     /// Pixel rules.
     pub thresholds: Thresholds,
 }
@@ -212,13 +215,6 @@ pub fn parse_map_yaml(path: &Path, text: &str) -> Result<MapYaml> {
             ));
         }
     };
-    if origin[2] != 0.0 {
-        return Err(invalid(
-            "origin",
-            origin_v,
-            "yaw 0 (rotated maps are not supported: rotate the image instead)",
-        ));
-    }
     let negate_v = field("negate")?;
     let negate = match negate_v {
         Yaml::Integer(0) | Yaml::Boolean(false) => false,
@@ -261,6 +257,7 @@ pub fn parse_map_yaml(path: &Path, text: &str) -> Result<MapYaml> {
         image,
         resolution,
         origin: Point::new(origin[0], origin[1]),
+        yaw: origin[2],
         thresholds: Thresholds {
             negate,
             occupied_thresh,
@@ -302,7 +299,7 @@ pub fn read_ros_yaml(path: &Path, options: &ReadOptions) -> Result<OccupancyGrid
         options.max_cells,
         &meta.thresholds,
     )?;
-    Ok(OccupancyGrid::new(cells, meta.resolution, meta.origin))
+    Ok(OccupancyGrid::new(cells, meta.resolution, meta.origin).with_yaw(meta.yaw))
 }
 
 /// Builds a map from a yaml's text and its image's bytes already in memory
@@ -324,7 +321,7 @@ pub fn read_ros_yaml_from_bytes(
         options.max_cells,
         &meta.thresholds,
     )?;
-    Ok(OccupancyGrid::new(cells, meta.resolution, meta.origin))
+    Ok(OccupancyGrid::new(cells, meta.resolution, meta.origin).with_yaw(meta.yaw))
 }
 
 /// Writes `map` as `<stem>.pgm` (P5, 8 bit) next to `yaml_path`, plus the yaml,
@@ -360,10 +357,11 @@ pub fn write_ros_map(map: &OccupancyGrid, yaml_path: &Path) -> Result<()> {
     write(&pgm_path, &pgm)?;
     let o = map.frame().origin();
     let yaml = format!(
-        "image: {pgm_name}\nmode: trinary\nresolution: {}\norigin: [{}, {}, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
+        "image: {pgm_name}\nmode: trinary\nresolution: {}\norigin: [{}, {}, {:?}]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
         map.resolution(),
         o.x,
-        o.y
+        o.y,
+        map.frame().yaw()
     );
     write(yaml_path, yaml.as_bytes())
 }
@@ -400,7 +398,9 @@ mod tests {
         let m = parse_map_yaml(Path::new("dir/m.yaml"), GOOD).unwrap();
         assert_eq!(m.image, Path::new("dir/m.pgm"));
         assert_eq!(m.resolution, 0.05);
-        assert_eq!(m.origin, Point::new(-1.0, 2.0));
+        assert_eq!((m.origin, m.yaw), (Point::new(-1.0, 2.0), 0.0));
+        let turned = parse_map_yaml(Path::new("m.yaml"), &GOOD.replace("0.0]", "2.5]")).unwrap();
+        assert_eq!(turned.yaw, 2.5);
         assert_eq!(m.thresholds, Thresholds::default());
         // Resolutions and origins that would overflow metre coordinates.
         let huge = GOOD.replace("resolution: 0.05", "resolution: 1e308");
@@ -459,7 +459,7 @@ mod tests {
                 GOOD.replace("resolution: 0.05\n", ""),
                 "missing field `resolution`",
             ),
-            (GOOD.replace("0.0]", "0.3]"), "field `origin`"),
+            (GOOD.replace("0.0]", ".nan]"), "field `origin`"),
             (GOOD.replace("negate: 0", "negate: 2"), "field `negate`"),
             (GOOD.replace("0.196", "1.5"), "field `free_thresh`"),
             (GOOD.replace("0.05", "-0.05"), "field `resolution`"),

@@ -230,14 +230,12 @@ impl Layout {
 
     /// Picture coordinates of a metre point.
     pub(crate) fn pixel_of(self, map: &OccupancyGrid, p: &Point) -> (f64, f64) {
-        let f = map.frame();
-        let res = f.resolution();
-        let o = f.origin();
-        let col = (p.x - o.x) / res;
-        let row_from_top = map.height() as f64 - (p.y - o.y) / res;
+        // The picture shows the image as stored (row 0 on top), whatever
+        // its yaw: place the point by its fractional cell.
+        let (row, col) = map.frame().fractional_cell(p);
         (
-            f64::from(MARGIN_PX) + col * self.scale,
-            f64::from(MARGIN_PX) + row_from_top * self.scale,
+            f64::from(MARGIN_PX) + (col + 0.5) * self.scale,
+            f64::from(MARGIN_PX) + (row + 0.5) * self.scale,
         )
     }
 }
