@@ -172,6 +172,13 @@ fn bad_camera_inputs_exit_2_with_one_line() {
     .expect("png");
     w("small.csv", b"image,x,y,theta\nsmall.png,1,1,0\n");
     w("bad.ron", b"(width: 3,");
+    // A camera of no pixels: the camera file is to blame, not the images.
+    let cam = std::fs::read_to_string(d.join("camera.ron")).expect("camera");
+    let zero = cam
+        .replacen("width:160", "width:0", 1)
+        .replacen("height:120", "height:0", 1);
+    assert_ne!(zero, cam, "the camera file's size fields changed form");
+    w("zero.ron", zero.as_bytes());
     let base = |poses: &'static str| {
         vec![
             "map-from-camera",
@@ -223,6 +230,34 @@ fn bad_camera_inputs_exit_2_with_one_line() {
                 "o.yaml",
             ],
             "bad.ron",
+        ),
+        (
+            vec![
+                "map-from-camera",
+                "--camera",
+                "zero.ron",
+                "--profile",
+                "profile.ron",
+                "--poses",
+                "poses.csv",
+                "--out",
+                "o.yaml",
+            ],
+            "file is `zero.ron`, expected a usable description (camera is `0x0`",
+        ),
+        (
+            vec![
+                "map-from-camera",
+                "--camera",
+                "camera.ron",
+                "--profile",
+                "profile.ron",
+                "--poses",
+                "poses.csv",
+                "--out",
+                "o.pgm",
+            ],
+            "expected a map file name ending in .yaml",
         ),
         (
             vec![
