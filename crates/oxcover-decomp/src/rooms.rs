@@ -141,7 +141,7 @@ pub fn morphological(free: &Grid<bool>, params: &RoomParams) -> Rooms {
             free[c] && d4[c] >= 4 * piece.level * piece.level
         });
     }
-    let mut next = chosen.len() as u32 + 1;
+    let next = chosen.len() as u32 + 1;
     let seeded = chosen.len();
 
     // Grow the seeds back over the free cells, ring by ring.
@@ -149,14 +149,7 @@ pub fn morphological(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     let mut queue: VecDeque<Cell> = labels.cells().filter(|&c| labels[c] != 0).collect();
     grow(free, &mut labels, &mut queue);
     // Free regions no seed reached: rooms of their own.
-    for c in free.true_cells() {
-        if labels[c] == 0 {
-            labels[c] = next;
-            next += 1;
-            queue.push_back(c);
-            grow(free, &mut labels, &mut queue);
-        }
-    }
+    let next = label_the_rest(free, &mut labels, next);
     let mut areas = vec![0usize; (next - 1) as usize];
     for c in labels.cells() {
         if labels[c] != 0 {
@@ -285,6 +278,21 @@ fn flood(labels: &mut Grid<u32>, start: Cell, label: u32, inside: impl Fn(Cell) 
             }
         }
     }
+}
+
+/// Gives every free region still unlabelled a label of its own, from
+/// `next` on (each grown breadth first); returns the next unused label.
+pub(crate) fn label_the_rest(free: &Grid<bool>, labels: &mut Grid<u32>, mut next: u32) -> u32 {
+    let mut queue = VecDeque::new();
+    for c in free.true_cells() {
+        if labels[c] == 0 {
+            labels[c] = next;
+            next += 1;
+            queue.push_back(c);
+            grow(free, labels, &mut queue);
+        }
+    }
+    next
 }
 
 /// Breadth-first growth of labelled cells over unlabelled free cells.

@@ -39,7 +39,7 @@ use std::collections::{BTreeMap, VecDeque};
 use oxcover_grid::edt::boundary_distance_sq4;
 use oxcover_grid::{Cell, Grid};
 
-use crate::rooms::{RoomParams, Rooms, doors, grow, merge_small_regions};
+use crate::rooms::{RoomParams, Rooms, doors, grow, label_the_rest, merge_small_regions};
 
 /// How much wider (cells of clearance) than a door the spaces it joins are.
 const WIDER: f64 = 2.0;
@@ -156,16 +156,8 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     // Grow back over the cuts, then merge small regions.
     let mut queue: VecDeque<Cell> = labels.cells().filter(|&c| labels[c] != 0).collect();
     grow(free, &mut labels, &mut queue);
-    let mut next = sizes.len() as u32 + 1;
-    for c in free.true_cells() {
-        if labels[c] == 0 {
-            // A region made of cut cells only.
-            labels[c] = next;
-            next += 1;
-            queue.push_back(c);
-            grow(free, &mut labels, &mut queue);
-        }
-    }
+    // Regions made of cut cells only.
+    label_the_rest(free, &mut labels, sizes.len() as u32 + 1);
     merge_small_regions(&mut labels, min_cells);
     // Relabel: rooms of at least the smallest area first, then the smaller
     // free regions (isolated specks no door joins), each in row-major order

@@ -19,7 +19,7 @@
 //! only when it lies at least resolution/4 from the last kept one; the final
 //! waypoint always ends the merged polyline.
 
-use oxcover_grid::footprint::{for_each_sample, mark_disc};
+use oxcover_grid::footprint::{for_each_sample, mark_covered, mark_disc};
 use oxcover_grid::math::{heading, wrap_angle};
 use oxcover_grid::{Coverability, DiscRobot, Grid, MapFrame, OccupancyGrid, Point};
 use oxcover_planners::TimeModel;
@@ -184,9 +184,7 @@ pub fn coverage_of(frame: &MapFrame, problem: &Coverability, pieces: &[Vec<Point
     let tool = problem.robot.tool_radius;
     let mut covered = Grid::new(frame.width(), frame.height(), false);
     for piece in pieces {
-        for_each_sample(piece, frame.resolution() / 4.0, |p| {
-            mark_disc(frame, p, tool, &mut covered);
-        });
+        mark_covered(frame, piece, tool, &mut covered);
     }
     let coverable = problem.coverable_count();
     if coverable == 0 {

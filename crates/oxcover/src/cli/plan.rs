@@ -31,7 +31,8 @@ pub(crate) struct PlanArgs {
     pub(crate) boundary_pass: OnOff,
     /// Plan room by room (rooms found by morphological segmentation, each
     /// finished before the next, in the order of least transit time); off
-    /// plans the whole map at once. A map with one room plans the same either way.
+    /// plans the whole map at once with the papers' nearest-first boundary pass
+    /// (on, a map with one room is planned at once with the straightened pass).
     #[arg(long, value_enum, value_name = "on|off", default_value_t = OnOff::On)]
     pub(crate) rooms: OnOff,
     #[command(flatten)]
