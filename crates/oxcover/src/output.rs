@@ -28,12 +28,29 @@ fn temporary(target: &Path, k: usize) -> PathBuf {
 /// nothing is left behind then.
 pub fn write_files(files: Vec<(PathBuf, Vec<u8>)>) -> Result<Vec<PathBuf>> {
     let mut staged: Vec<(PathBuf, PathBuf)> = Vec::with_capacity(files.len());
+    let mut streams: Vec<(PathBuf, Vec<u8>)> = Vec::new();
+    let mut shown: Vec<PathBuf> = Vec::with_capacity(files.len());
     let cleanup = |staged: &[(PathBuf, PathBuf)]| {
         for (_, tmp) in staged {
             let _ = std::fs::remove_file(tmp);
         }
     };
     for (k, (target, bytes)) in files.into_iter().enumerate() {
+        shown.push(target.clone());
+        // A device, pipe or socket (`--out /dev/null`, a fifo) is written
+        // to as it is: renaming over it would replace it with a file.
+        let existing = std::fs::metadata(&target).ok();
+        if existing.as_ref().is_some_and(|m| !m.is_file()) {
+            streams.push((target, bytes));
+            continue;
+        }
+        // A link to a file is followed: the file it names is replaced, the
+        // link stays.
+        let target = if existing.is_some() {
+            std::fs::canonicalize(&target).unwrap_or(target)
+        } else {
+            target
+        };
         let tmp = temporary(&target, k);
         let written = std::fs::OpenOptions::new()
             .write(true)
@@ -50,13 +67,23 @@ pub fn write_files(files: Vec<(PathBuf, Vec<u8>)>) -> Result<Vec<PathBuf>> {
         }
         staged.push((target, tmp));
     }
+    for (target, bytes) in &streams {
+        let written = std::fs::OpenOptions::new()
+            .write(true)
+            .open(target)
+            .and_then(|mut f| f.write_all(bytes));
+        if let Err(e) = written {
+            cleanup(&staged);
+            return Err(Error::write(target, e));
+        }
+    }
     for (i, (target, tmp)) in staged.iter().enumerate() {
         if let Err(e) = std::fs::rename(tmp, target) {
             cleanup(&staged[i..]);
             return Err(Error::write(target, e));
         }
     }
-    Ok(staged.into_iter().map(|(t, _)| t).collect())
+    Ok(shown)
 }
 
 /// Writes one file whole or not at all ([`write_files`]).
@@ -86,5 +113,24 @@ mod tests {
         );
         write_file(&a, b"whole".to_vec()).unwrap();
         assert_eq!(std::fs::read(&a).unwrap(), b"whole");
+    }
+
+    #[test]
+    fn devices_and_links_are_written_through() {
+        let dir = std::env::temp_dir().join(format!("oxcover-output-dev-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        // A character device stays one: written to, not replaced.
+        write_file(Path::new("/dev/null"), b"gone".to_vec()).unwrap();
+        let meta = std::fs::metadata("/dev/null").unwrap();
+        assert!(!meta.is_file(), "/dev/null was replaced by a file");
+        // A link to a file keeps being a link; the file gets the new bytes.
+        let file = dir.join("real.csv");
+        let link = dir.join("link.csv");
+        std::fs::write(&file, b"old").unwrap();
+        std::os::unix::fs::symlink(&file, &link).unwrap();
+        write_file(&link, b"new".to_vec()).unwrap();
+        assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
+        assert_eq!(std::fs::read(&file).unwrap(), b"new");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -168,6 +168,7 @@ fn bad_inputs_exit_2_with_one_line() {
         b"(name: \"w\", width: 1e6, height: 1e6, resolution: 0.01, obstacles: [])",
     );
     let no_dir = d.join("no/such/dir/out.csv").display().to_string();
+    let a_folder = d.display().to_string();
     let missing = d.join("does-not-exist.yaml").display().to_string();
     let _ = &ok_pgm;
     let png_map = real_png_path();
@@ -421,7 +422,23 @@ fn bad_inputs_exit_2_with_one_line() {
         (vec!["plan", &good_yaml], "--planner"),
         (
             vec!["plan", &good_yaml, "--planner", "dtc", "--out", &no_dir],
-            "cannot write",
+            "does not exist",
+        ),
+        (
+            vec!["plan", &good_yaml, "--planner", "dtc", "--out", &a_folder],
+            "a file name, not a folder",
+        ),
+        (
+            vec!["plan", &good_yaml, "--planner", "dtc", "--out", "/proc/out.csv"],
+            "/proc is not writable",
+        ),
+        (
+            vec!["plan", &good_yaml, "--planner", "dtc", "--svg", "p.png"],
+            "--svg is `p.png`, expected a file name ending in .svg",
+        ),
+        (
+            vec!["explore", &ok_world, "--start", "0.5,0.5", "--map", "m.pgm"],
+            "--map is `m.pgm`, expected a file name ending in .yaml",
         ),
         (
             vec!["plan", &png_map, "--planner", "dtc", "--resolution", "-0.5"],
@@ -484,7 +501,7 @@ fn bad_inputs_exit_2_with_one_line() {
         ),
         (
             vec!["explore", &ok_world, "--start", "0.5,0.5", "--out", &no_dir],
-            "cannot write",
+            "does not exist",
         ),
         (
             vec!["plan", &big_map, "--planner", "optimal"],

@@ -18,7 +18,7 @@ pub use ascii::{ascii_mask, parse_ascii, to_ascii};
 pub use movingai::{parse_movingai, read_movingai};
 pub use ros::{
     MAX_ORIGIN, MAX_RESOLUTION, MapYaml, Mode, Thresholds, parse_map_yaml, read_ros_yaml,
-    read_ros_yaml_from_bytes, write_ros_map,
+    read_ros_yaml_from_bytes, ros_map_files, write_ros_map,
 };
 
 use std::path::Path;

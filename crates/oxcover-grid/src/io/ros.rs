@@ -324,15 +324,15 @@ pub fn read_ros_yaml_from_bytes(
     Ok(OccupancyGrid::new(cells, meta.resolution, meta.origin).with_yaw(meta.yaw))
 }
 
-/// Writes `map` as `<stem>.pgm` (P5, 8 bit) next to `yaml_path`, plus the yaml,
-/// in the form `map_saver` writes: free 254, occupied 0, unknown 205, trinary
-/// thresholds 0.65 / 0.196. ROS tools and [`read_ros_yaml`] read it back to the
-/// same cells.
+/// The two files of `map` as a ROS map, as (path, contents), image first:
+/// `<stem>.pgm` (P5, 8 bit) next to `yaml_path`, then the yaml, in the form
+/// `map_saver` writes (free 254, occupied 0, unknown 205, trinary thresholds
+/// 0.65 / 0.196). ROS tools and [`read_ros_yaml`] read it back to the same
+/// cells.
 ///
 /// # Errors
-/// [`Error::Write`] when a file cannot be written, [`Error::Format`] for a yaml
-/// path without a file stem.
-pub fn write_ros_map(map: &OccupancyGrid, yaml_path: &Path) -> Result<()> {
+/// [`Error::Format`] when `yaml_path` has no file name.
+pub fn ros_map_files(map: &OccupancyGrid, yaml_path: &Path) -> Result<[(PathBuf, Vec<u8>); 2]> {
     let stem = yaml_path
         .file_stem()
         .and_then(|s| s.to_str())
@@ -348,13 +348,6 @@ pub fn write_ros_map(map: &OccupancyGrid, yaml_path: &Path) -> Result<()> {
         Occupancy::Occupied => 0,
         Occupancy::Unknown => 205,
     }));
-    let write = |p: &Path, data: &[u8]| {
-        std::fs::write(p, data).map_err(|source| Error::Write {
-            path: p.to_path_buf(),
-            source,
-        })
-    };
-    write(&pgm_path, &pgm)?;
     let o = map.frame().origin();
     let yaml = format!(
         "image: {pgm_name}\nmode: trinary\nresolution: {}\norigin: [{}, {}, {:?}]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
@@ -363,7 +356,18 @@ pub fn write_ros_map(map: &OccupancyGrid, yaml_path: &Path) -> Result<()> {
         o.y,
         map.frame().yaw()
     );
-    write(yaml_path, yaml.as_bytes())
+    Ok([(pgm_path, pgm), (yaml_path.to_path_buf(), yaml.into_bytes())])
+}
+
+/// Writes `map` as a ROS map: the files of [`ros_map_files`], image first.
+///
+/// # Errors
+/// As [`ros_map_files`]; [`Error::Write`] naming a file that could not be written.
+pub fn write_ros_map(map: &OccupancyGrid, yaml_path: &Path) -> Result<()> {
+    for (path, data) in ros_map_files(map, yaml_path)? {
+        std::fs::write(&path, data).map_err(|source| Error::Write { path, source })?;
+    }
+    Ok(())
 }
 
 fn number(v: &Yaml) -> Option<f64> {

@@ -5,10 +5,10 @@ use std::path::{Path, PathBuf};
 
 use clap::ValueEnum;
 use oxcover::grid::Point;
-use oxcover::render::{Scene, render_to_file};
+use oxcover::render::{Scene, render_bytes};
 use oxcover::{Error, Result};
 
-use super::args::{distinct_outputs, read_ron};
+use super::args::{ANY, PNG, YAML, asked, check_outputs, read_ron};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum VisibilityArg {
@@ -96,9 +96,12 @@ pub(crate) fn cmd_map_from_camera(a: &MapFromCameraArgs) -> Result<()> {
         });
     }
     let image = a.out.with_extension("pgm");
-    let mut outs: Vec<(&'static str, &Path)> = vec![("--out", &a.out), ("--out's image", &image)];
-    outs.extend(a.png.as_deref().map(|p| ("--png", p)));
-    distinct_outputs(&[&a.camera, &a.profile, &a.poses], &outs)?;
+    let outs = asked([
+        ("--out", Some(a.out.as_path()), YAML),
+        ("--out's image", Some(image.as_path()), ANY),
+        ("--png", a.png.as_deref(), PNG),
+    ]);
+    check_outputs(&[&a.camera, &a.profile, &a.poses], &outs)?;
     let camera: Camera = read_ron(&a.camera, "camera")?;
     camera.check().map_err(|e| in_file(&a.camera, &e))?;
     let profile: Profile = read_ron(&a.profile, "profile")?;
@@ -114,7 +117,13 @@ pub(crate) fn cmd_map_from_camera(a: &MapFromCameraArgs) -> Result<()> {
         mapper.add_view(view)?;
     }
     let map = mapper.map();
-    oxcover::grid::io::write_ros_map(&map, &a.out)?;
+    // The map and its picture are written as one set.
+    let mut files: Vec<(PathBuf, Vec<u8>)> = oxcover::grid::io::ros_map_files(&map, &a.out)?.into();
+    if let Some(f) = &a.png {
+        let scene = Scene::map_only(&map, "map from camera".into(), Vec::new());
+        files.push((f.clone(), render_bytes(&scene, f)?));
+    }
+    let written = oxcover::output::write_files(files)?;
     let mut out = super::out::stdout();
     let counts = map.counts();
     let _ = writeln!(
@@ -127,11 +136,8 @@ pub(crate) fn cmd_map_from_camera(a: &MapFromCameraArgs) -> Result<()> {
         counts.occupied,
         counts.unknown
     );
-    let _ = writeln!(out, "wrote {}", a.out.display());
-    if let Some(f) = &a.png {
-        let scene = Scene::map_only(&map, "map from camera".into(), Vec::new());
-        render_to_file(&scene, f)?;
-        let _ = writeln!(out, "wrote {}", f.display());
+    for w in written {
+        let _ = writeln!(out, "wrote {}", w.display());
     }
     Ok(())
 }

@@ -1,14 +1,14 @@
 //! `oxcover explore`: the sensor-based planner on a polygonal world.
 
 use std::io::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use oxcover::grid::Point;
-use oxcover::render::{Scene, render_to_file};
+use oxcover::render::{Scene, render_bytes};
 use oxcover::report::{metric_rows, table};
 use oxcover::{Error, Result};
 
-use super::args::{distinct_outputs, parse_start};
+use super::args::{ANY, PNG, SVG, YAML, asked, check_outputs, parse_start};
 
 #[derive(Debug, clap::Args)]
 pub(crate) struct ExploreArgs {
@@ -91,18 +91,17 @@ pub(crate) fn cmd_explore(a: &ExploreArgs) -> Result<()> {
     if let Some(f) = &a.graph {
         graph_format(f)?;
     }
-    let outs: Vec<(&'static str, &std::path::Path)> = [
-        ("--out", a.out.as_deref()),
-        ("--graph", a.graph.as_deref()),
-        ("--map", a.map.as_deref()),
-        ("--svg", a.svg.as_deref()),
-        ("--png", a.png.as_deref()),
-        ("--report", a.report.as_deref()),
-    ]
-    .into_iter()
-    .filter_map(|(f, p)| p.map(|p| (f, p)))
-    .collect();
-    distinct_outputs(&[&a.world], &outs)?;
+    let map_image = a.map.as_ref().map(|m| m.with_extension("pgm"));
+    let outs = asked([
+        ("--out", a.out.as_deref(), ANY),
+        ("--graph", a.graph.as_deref(), &["json", "ron"]),
+        ("--map", a.map.as_deref(), YAML),
+        ("--map's image", map_image.as_deref(), ANY),
+        ("--svg", a.svg.as_deref(), SVG),
+        ("--png", a.png.as_deref(), PNG),
+        ("--report", a.report.as_deref(), ANY),
+    ]);
+    check_outputs(&[&a.world], &outs)?;
     let world = oxcover::world::World::read(&a.world)?;
     let cfg = Config {
         robot_radius: a.robot_radius,
@@ -117,26 +116,22 @@ pub(crate) fn cmd_explore(a: &ExploreArgs) -> Result<()> {
     let outcome = explore_world(&world, &cfg, a.start)?;
     let e = &outcome.exploration;
     let report = outcome.report(&world, &cfg);
-    let mut written = Vec::new();
-    let mut write = |f: &Path, text: &[u8]| -> Result<()> {
-        oxcover::output::write_file(f, text.into())?;
-        written.push(f.to_path_buf());
-        Ok(())
-    };
+    // Every output is made first and written as one set: a failure leaves
+    // none of them behind.
+    let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     if let Some(f) = &a.out {
-        write(f, trace_csv(e).as_bytes())?;
+        files.push((f.clone(), trace_csv(e).into_bytes()));
     }
     if let Some(f) = &a.graph {
-        write(f, graph_text(&e.graph, f)?.as_bytes())?;
+        files.push((f.clone(), graph_text(&e.graph, f)?.into_bytes()));
     }
     if let Some(f) = &a.report {
         let text = serde_json::to_string_pretty(&report)
             .map_err(|err| Error::Internal(format!("report serialisation failed: {err}")))?;
-        write(f, text.as_bytes())?;
+        files.push((f.clone(), text.into_bytes()));
     }
     if let Some(f) = &a.map {
-        oxcover::grid::io::write_ros_map(&outcome.map, f)?;
-        written.push(f.clone());
+        files.extend(oxcover::grid::io::ros_map_files(&outcome.map, f)?);
     }
     let mut rows = metric_rows(&outcome.evaluation.metrics);
     rows.truncate(3);
@@ -162,9 +157,9 @@ pub(crate) fn cmd_explore(a: &ExploreArgs) -> Result<()> {
         rows: rows.clone(),
     };
     for f in [a.svg.as_deref(), a.png.as_deref()].into_iter().flatten() {
-        render_to_file(&scene, f)?;
-        written.push(f.to_path_buf());
+        files.push((f.to_path_buf(), render_bytes(&scene, f)?));
     }
+    let written = oxcover::output::write_files(files)?;
     let mut out = super::out::stdout();
     let _ = writeln!(
         out,

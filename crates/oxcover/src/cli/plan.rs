@@ -9,7 +9,10 @@ use oxcover::pipeline::{Outputs, PlanRequest, coverage_notes, plan, planner, wri
 use oxcover::planners::{PlannerOptions, Start};
 use oxcover::report::table;
 
-use super::args::{OnOff, RobotArgs, TimeArgs, distinct_outputs, load, parse_start, robot_of};
+use super::args::{
+    ANY, OnOff, Output, PNG, RobotArgs, SVG, TimeArgs, asked, check_outputs, load, parse_start,
+    robot_of,
+};
 
 #[derive(Debug, clap::Args)]
 pub(crate) struct PlanArgs {
@@ -56,21 +59,18 @@ pub(crate) struct PlanArgs {
 }
 
 /// The outputs `plan` would write, with their options.
-pub(crate) fn plan_outputs(a: &PlanArgs) -> Vec<(&'static str, &std::path::Path)> {
-    [
-        ("--out", a.out.as_deref()),
-        ("--svg", a.svg.as_deref()),
-        ("--png", a.png.as_deref()),
-        ("--report", a.report.as_deref()),
-    ]
-    .into_iter()
-    .filter_map(|(f, p)| p.map(|p| (f, p)))
-    .collect()
+pub(crate) fn plan_outputs(a: &PlanArgs) -> Vec<Output<'_>> {
+    asked([
+        ("--out", a.out.as_deref(), ANY),
+        ("--svg", a.svg.as_deref(), SVG),
+        ("--png", a.png.as_deref(), PNG),
+        ("--report", a.report.as_deref(), ANY),
+    ])
 }
 
 /// The map and the plan request the `plan` options describe.
 pub(crate) fn map_and_request(a: &PlanArgs) -> Result<(OccupancyGrid, PlanRequest)> {
-    distinct_outputs(&[&a.map], &plan_outputs(a))?;
+    check_outputs(&[&a.map], &plan_outputs(a))?;
     let map = load(&a.map, a.robot.resolution)?;
     let robot = robot_of(&a.robot, &map)?;
     let time = a.time.model()?;

@@ -10,7 +10,7 @@ use oxcover::pipeline::short_name;
 use oxcover::render::{Scene, render_to_file};
 use oxcover::report::metric_rows;
 
-use super::args::{RobotArgs, distinct_outputs, load, map_rows, robot_of};
+use super::args::{PICTURE, RobotArgs, check_outputs, load, map_rows, robot_of};
 
 #[derive(Debug, clap::Args)]
 pub(crate) struct RenderArgs {
@@ -28,7 +28,7 @@ pub(crate) struct RenderArgs {
 pub(crate) fn cmd_render(a: &RenderArgs) -> Result<()> {
     let mut inputs = vec![a.map.as_path()];
     inputs.extend(a.path.as_deref());
-    distinct_outputs(&inputs, &[("--out", &a.out)])?;
+    check_outputs(&inputs, &[("--out", &a.out, PICTURE)])?;
     let map = load(&a.map, a.robot.resolution)?;
     let name = short_name(&a.map.display().to_string());
     match &a.path {

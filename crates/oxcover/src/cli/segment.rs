@@ -10,7 +10,7 @@ use oxcover::report::table;
 use oxcover::rooms::{Method, SegmentOptions, door_overlay, report, scene, segment};
 use oxcover::{Error, Result};
 
-use super::args::{distinct_outputs, load};
+use super::args::{PNG, SVG, asked, check_outputs, load};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum MethodArg {
@@ -68,28 +68,18 @@ pub(crate) struct SegmentArgs {
 }
 
 pub(crate) fn cmd_segment(a: &SegmentArgs) -> Result<()> {
-    let out_ext = a
-        .out
-        .as_ref()
-        .map(|f| f.extension().and_then(|e| e.to_str()).unwrap_or(""));
-    if let (Some(f), Some(ext)) = (&a.out, out_ext) {
-        if !matches!(ext, "json" | "png" | "svg") {
-            return Err(Error::BadParameter {
-                name: "--out",
-                value: f.display().to_string(),
-                expected: "a file name ending in .json, .png or .svg".into(),
-            });
-        }
-    }
-    let outs: Vec<(&'static str, &std::path::Path)> = [
-        ("--out", a.out.as_deref()),
-        ("--svg", a.svg.as_deref()),
-        ("--png", a.png.as_deref()),
-    ]
-    .into_iter()
-    .filter_map(|(f, p)| p.map(|p| (f, p)))
-    .collect();
-    distinct_outputs(&[&a.map], &outs)?;
+    let outs = asked([
+        ("--out", a.out.as_deref(), &["json", "png", "svg"]),
+        ("--svg", a.svg.as_deref(), SVG),
+        ("--png", a.png.as_deref(), PNG),
+    ]);
+    check_outputs(&[&a.map], &outs)?;
+    let out_ext = a.out.as_ref().map(|f| {
+        f.extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase)
+            .unwrap_or_default()
+    });
     let map = load(&a.map, a.resolution)?;
     let options = SegmentOptions {
         method: match a.method {
@@ -103,8 +93,8 @@ pub(crate) fn cmd_segment(a: &SegmentArgs) -> Result<()> {
     let rooms = segment(&map, &options)?;
     let rep = report(&map, &rooms, &options);
     let mut files: Vec<(std::path::PathBuf, Vec<u8>)> = Vec::new();
-    let json_out = a.out.as_ref().filter(|_| out_ext == Some("json"));
-    let picture_out = a.out.as_ref().filter(|_| out_ext != Some("json"));
+    let json_out = a.out.as_ref().filter(|_| out_ext.as_deref() == Some("json"));
+    let picture_out = a.out.as_ref().filter(|_| out_ext.as_deref() != Some("json"));
     if let Some(f) = json_out {
         let json = serde_json::to_string_pretty(&rep)
             .map_err(|e| Error::Internal(format!("rooms serialisation failed: {e}")))?;

@@ -53,7 +53,7 @@ pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
     use oxcover::closed_loop::{ClosedLoop, ControllerKind, execute, to_csv};
     let p = &a.plan;
     if let Some(spec) = &a.robot_spec {
-        super::args::distinct_outputs(&[spec], &super::plan::plan_outputs(p))?;
+        super::args::check_outputs(&[spec], &super::plan::plan_outputs(p))?;
     }
     let spec_text = match &a.robot_spec {
         Some(f) => oxcover::grid::io::limited::read_limited_string(
