@@ -8,6 +8,8 @@
 //!   reference ratios and cells-touched counts, into `docs/benchmarks.md`.
 //! - [`efficiency`]: every complete planner, rooms on and off, on the real
 //!   floor plans, scored by estimated time; `docs/efficiency.md`.
+//! - [`fuzz`]: every input parser fed mutated fixture bytes; any panic or
+//!   slow input is a finding.
 //! - [`maps`]: plan and score every real map in `../shared/maps`; `docs/maps.md`.
 //! - [`reproduce`]: the paper reproductions (`siamantas2010`,
 //!   `siamantas2010-tracking`, `zhang2008`, `pavlicek2002`, `floorplans`,
@@ -21,6 +23,7 @@
 pub mod acceptance;
 pub mod bench;
 pub mod efficiency;
+pub mod fuzz;
 pub mod maps;
 pub mod plot;
 pub mod reproduce;

@@ -42,6 +42,22 @@ enum Task {
     /// Every complete planner, rooms on and off, on the real floor plans,
     /// scored by estimated time; write docs/efficiency.md.
     Efficiency,
+    /// Feed every input parser mutated bytes of the fixture files; fail on a
+    /// panic or a slow input (saved under target/fuzz/findings).
+    Fuzz {
+        /// Time for all targets together, in seconds.
+        #[arg(long, default_value_t = 60.0)]
+        seconds: f64,
+        /// Seed of the mutations.
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Run exactly this many mutated inputs per target instead of timing.
+        #[arg(long)]
+        iterations: Option<u64>,
+        /// Only these targets (comma-separated).
+        #[arg(long)]
+        target: Option<String>,
+    },
     /// Reproduce a paper's experiment: siamantas2010, siamantas2010-tracking, zhang2008, pavlicek2002, floorplans, lee2011, demir2018 or pavlicek2002-camera.
     Reproduce {
         /// Experiment name.
@@ -99,6 +115,12 @@ fn main() -> anyhow::Result<()> {
         }
         Task::Reproduce { name } => xtask::reproduce::run(&name),
         Task::Efficiency => xtask::efficiency::run(),
+        Task::Fuzz {
+            seconds,
+            seed,
+            iterations,
+            target,
+        } => xtask::fuzz::run(seconds, seed, iterations, target.as_deref()),
         Task::Sweep {
             planners,
             size,

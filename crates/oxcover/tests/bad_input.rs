@@ -429,7 +429,14 @@ fn bad_inputs_exit_2_with_one_line() {
             "a file name, not a folder",
         ),
         (
-            vec!["plan", &good_yaml, "--planner", "dtc", "--out", "/proc/out.csv"],
+            vec![
+                "plan",
+                &good_yaml,
+                "--planner",
+                "dtc",
+                "--out",
+                "/proc/out.csv",
+            ],
             "/proc is not writable",
         ),
         (

@@ -356,7 +356,10 @@ pub fn ros_map_files(map: &OccupancyGrid, yaml_path: &Path) -> Result<[(PathBuf,
         o.y,
         map.frame().yaw()
     );
-    Ok([(pgm_path, pgm), (yaml_path.to_path_buf(), yaml.into_bytes())])
+    Ok([
+        (pgm_path, pgm),
+        (yaml_path.to_path_buf(), yaml.into_bytes()),
+    ])
 }
 
 /// Writes `map` as a ROS map: the files of [`ros_map_files`], image first.

@@ -93,8 +93,14 @@ pub(crate) fn cmd_segment(a: &SegmentArgs) -> Result<()> {
     let rooms = segment(&map, &options)?;
     let rep = report(&map, &rooms, &options);
     let mut files: Vec<(std::path::PathBuf, Vec<u8>)> = Vec::new();
-    let json_out = a.out.as_ref().filter(|_| out_ext.as_deref() == Some("json"));
-    let picture_out = a.out.as_ref().filter(|_| out_ext.as_deref() != Some("json"));
+    let json_out = a
+        .out
+        .as_ref()
+        .filter(|_| out_ext.as_deref() == Some("json"));
+    let picture_out = a
+        .out
+        .as_ref()
+        .filter(|_| out_ext.as_deref() != Some("json"));
     if let Some(f) = json_out {
         let json = serde_json::to_string_pretty(&rep)
             .map_err(|e| Error::Internal(format!("rooms serialisation failed: {e}")))?;
