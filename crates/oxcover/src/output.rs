@@ -6,9 +6,45 @@
 //! files are removed and no target is touched. A rename within one folder
 //! is atomic, so a reader (or a run interrupted by SIGINT or SIGTERM) sees
 //! either the old file or the whole new one, never half of it.
+//!
+//! The temporary files in flight are registered: on SIGINT or SIGTERM the
+//! command line calls [`abandon`], which removes them (waiting for a set
+//! being renamed into place to finish) so an interrupted run leaves nothing
+//! behind. Only SIGKILL, which no program can catch, can leave a hidden
+//! `.NAME.oxcover-PID-K.tmp` beside a target; the target itself is still
+//! whole or absent.
 
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+/// Temporary files written and not yet renamed into place.
+static STAGED: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Removes every temporary file of this process not yet renamed into place
+/// and holds back every later write; for a signal handler about to exit. A set
+/// being renamed into place is finished first (the lock is held while it
+/// is).
+pub fn abandon() {
+    let mut staged = STAGED
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    for tmp in staged.drain(..) {
+        let _ = std::fs::remove_file(tmp);
+    }
+    // Keep the lock: no write may start after this.
+    std::mem::forget(staged);
+}
+
+fn in_flight() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+    STAGED
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+fn unregister(tmps: &[&Path]) {
+    in_flight().retain(|p| !tmps.contains(&p.as_path()));
+}
 
 use crate::error::{Error, Result};
 
@@ -34,6 +70,7 @@ pub fn write_files(files: Vec<(PathBuf, Vec<u8>)>) -> Result<Vec<PathBuf>> {
         for (_, tmp) in staged {
             let _ = std::fs::remove_file(tmp);
         }
+        unregister(&staged.iter().map(|(_, t)| t.as_path()).collect::<Vec<_>>());
     };
     for (k, (target, bytes)) in files.into_iter().enumerate() {
         shown.push(target.clone());
@@ -52,6 +89,7 @@ pub fn write_files(files: Vec<(PathBuf, Vec<u8>)>) -> Result<Vec<PathBuf>> {
             target
         };
         let tmp = temporary(&target, k);
+        in_flight().push(tmp.clone());
         let written = std::fs::OpenOptions::new()
             .write(true)
             .create_new(true)
@@ -62,6 +100,7 @@ pub fn write_files(files: Vec<(PathBuf, Vec<u8>)>) -> Result<Vec<PathBuf>> {
             });
         if let Err(e) = written {
             let _ = std::fs::remove_file(&tmp);
+            unregister(&[&tmp]);
             cleanup(&staged);
             return Err(Error::write(&target, e));
         }
@@ -77,12 +116,17 @@ pub fn write_files(files: Vec<(PathBuf, Vec<u8>)>) -> Result<Vec<PathBuf>> {
             return Err(Error::write(target, e));
         }
     }
+    // The set is renamed under the lock: a signal handler's `abandon` waits
+    // until every file of it is in place.
+    let mut registry = in_flight();
     for (i, (target, tmp)) in staged.iter().enumerate() {
         if let Err(e) = std::fs::rename(tmp, target) {
+            drop(registry);
             cleanup(&staged[i..]);
             return Err(Error::write(target, e));
         }
     }
+    registry.retain(|p| !staged.iter().any(|(_, t)| t == p));
     Ok(shown)
 }
 

@@ -87,6 +87,14 @@ pub(crate) fn main() -> ExitCode {
         let msg = info.to_string().replace('\n', " ");
         let _ = writeln!(std::io::stderr(), "oxcover: internal error: {msg}");
     }));
+    // SIGINT, SIGTERM or SIGHUP: remove the outputs being written (none is
+    // left half-written), then exit as a process killed by the signal would
+    // report it (128 + 2; the handler cannot tell the signals apart).
+    let _ = ctrlc::set_handler(|| {
+        oxcover::output::abandon();
+        let _ = writeln!(std::io::stderr(), "oxcover: interrupted, no output written");
+        std::process::exit(130);
+    });
     let code = std::panic::catch_unwind(|| run(std::env::args_os())).unwrap_or(1);
     ExitCode::from(code)
 }
