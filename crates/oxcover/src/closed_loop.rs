@@ -83,9 +83,26 @@ pub struct Run {
     pub tracking_rms: f64,
     /// Largest tracking error (m).
     pub tracking_max: f64,
+    /// Distance from where the robot stopped to the path's last point (m).
+    pub end_gap_m: f64,
 }
 
 impl Run {
+    /// A warning when the run was cut short: it ends at its time cap (the
+    /// reference's duration plus a 2 s settle) with the robot farther than
+    /// the tool radius from the path's end and coverage below the plan's.
+    #[must_use]
+    pub fn cut_short(&self, planned_coverage: f64, tool_radius: f64) -> Option<String> {
+        let covered = self.evaluation.metrics.coverage;
+        (self.end_gap_m > tool_radius.max(0.01) && covered < planned_coverage - 1e-3).then(|| {
+            format!(
+                "the run ended at its time cap ({:.1} s: the reference's time plus 2 s) {:.2} m short of the path's end, covering {covered:.4} where the plan covers {planned_coverage:.4}; the robot could not keep up with the reference (its wheel speeds or accelerations, the controller)",
+                self.duration_s(),
+                self.end_gap_m
+            )
+        })
+    }
+
     /// Duration of the run (s): the last sample's time.
     #[must_use]
     pub fn duration_s(&self) -> f64 {
@@ -116,6 +133,7 @@ impl Run {
             tracking_rms_m: self.tracking_rms,
             tracking_max_m: self.tracking_max,
             planned_coverage,
+            warning: self.cut_short(planned_coverage, self.evaluation.problem.robot.tool_radius),
             metrics: self.evaluation.metrics.clone(),
         }
     }
@@ -252,11 +270,16 @@ pub fn execute(
     let n = samples.len().max(1) as f64;
     let tracking_rms = (samples.iter().map(|s| s.error * s.error).sum::<f64>() / n).sqrt();
     let tracking_max = samples.iter().map(|s| s.error).fold(0.0, f64::max);
+    let end_gap_m = match (samples.last(), points.last()) {
+        (Some(s), Some(p)) => (s.pose.x - p.x).hypot(s.pose.y - p.y),
+        _ => 0.0,
+    };
     Ok(Run {
         samples,
         evaluation,
         tracking_rms,
         tracking_max,
+        end_gap_m,
     })
 }
 

@@ -15,6 +15,9 @@
 //! - [`explore`]: the sensor-based planner `sensor-bcd` run on a polygonal
 //!   world, scored on the world's raster, its Reeb graph matched against the
 //!   world's exact critical points, and drawn (`oxcover explore`).
+//! - [`memory`]: the memory a plan needs, estimated before it starts, and
+//!   the machine's budget.
+//! - [`output`]: outputs written whole or not at all.
 //! - [`metrics`]: coverage, collisions, length, turns, rotation, redundancy,
 //!   steps, estimated time, exactly as the contract defines them.
 //! - [`path`]: cell paths to metre waypoints; the CSV path file.
@@ -49,6 +52,7 @@
 pub mod closed_loop;
 pub mod error;
 pub mod explore;
+pub mod memory;
 pub mod metrics;
 pub mod output;
 pub mod path;

@@ -100,6 +100,11 @@ pub struct PlanRequest {
     /// Speeds for estimated time, the planners' objective and the metrics'
     /// `est_time_s` (default: the contract's 0.3 m/s and 0.52 rad/s).
     pub time: TimeModel,
+    /// Memory budget in bytes: [`plan`] refuses a map whose estimated need
+    /// ([`crate::memory::estimate`]) is above it. Default
+    /// [`crate::memory::default_limit`] (3/4 of the machine's memory);
+    /// `None` plans whatever the size.
+    pub memory_limit: Option<u64>,
 }
 
 impl std::fmt::Debug for PlanRequest {
@@ -113,6 +118,7 @@ impl std::fmt::Debug for PlanRequest {
             .field("boundary_pass", &self.boundary_pass)
             .field("rooms", &self.rooms)
             .field("time", &self.time)
+            .field("memory_limit", &self.memory_limit)
             .finish()
     }
 }
@@ -143,7 +149,44 @@ impl PlanRequest {
             boundary_pass: true,
             rooms: true,
             time: TimeModel::default(),
+            memory_limit: crate::memory::default_limit(),
         }
+    }
+
+    /// The same request with another memory budget (`None`: no limit).
+    #[must_use]
+    pub fn memory_limit(mut self, bytes: Option<u64>) -> Self {
+        self.memory_limit = bytes;
+        self
+    }
+
+    /// Refuses a map this request could not plan within its memory budget,
+    /// before anything large is allocated.
+    ///
+    /// # Errors
+    /// [`Error::MemoryLimit`] naming the map size, the estimate, the budget
+    /// and what helps.
+    pub fn check_memory(&self, map: &OccupancyGrid, map_name: &str) -> Result<()> {
+        let Some(limit) = self.memory_limit else {
+            return Ok(());
+        };
+        let (w, h) = (map.width() as u64, map.height() as u64);
+        let block = oxcover_planners::coarse_block(&self.robot, map.resolution()) as u64;
+        let coverage = w.div_ceil(block) * h.div_ceil(block);
+        let name = self.planner.name();
+        let need = crate::memory::estimate(name, self.rooms, w * h, coverage);
+        if need <= limit {
+            return Ok(());
+        }
+        let show = crate::memory::show;
+        Err(Error::MemoryLimit {
+            map: map_name.to_string(),
+            cells: format!("{w}x{h}"),
+            planner: format!("{name} (rooms {})", if self.rooms { "on" } else { "off" }),
+            need: show(need),
+            limit: show(limit),
+            hint: "a coarser --resolution for an image, a larger --tool-radius, --rooms off, or a higher --memory-limit if the machine has it".into(),
+        })
     }
 
     /// The same request for another robot and tool.
@@ -298,9 +341,11 @@ impl PlanOutcome {
 /// is finished before the robot leaves it.
 ///
 /// # Errors
-/// Bad radii or start ([`oxcover_grid::Error`]), a planner's refusal
+/// A map too large for [`PlanRequest::memory_limit`] ([`Error::MemoryLimit`]),
+/// bad radii or start ([`oxcover_grid::Error`]), a planner's refusal
 /// ([`oxcover_planners::Error::TooLarge`]) or an internal fault.
 pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
+    request.check_memory(map, "map")?;
     let t0 = Instant::now();
     let problem = request.problem(map)?;
     let units = if request.rooms {

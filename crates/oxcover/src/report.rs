@@ -98,6 +98,9 @@ pub struct SimulateReport {
     pub tracking_max_m: f64,
     /// Coverage of the plan itself, for comparison.
     pub planned_coverage: f64,
+    /// Set when the run ended at its time cap short of the path's end with
+    /// less coverage than the plan (`null` otherwise).
+    pub warning: Option<String>,
     /// The metrics of the executed trajectory (flattened into the object).
     #[serde(flatten)]
     pub metrics: Metrics,

@@ -511,6 +511,28 @@ fn bad_inputs_exit_2_with_one_line() {
             "does not exist",
         ),
         (
+            vec![
+                "plan",
+                &good_yaml,
+                "--planner",
+                "dtc",
+                "--memory-limit",
+                "1M",
+            ],
+            "needs about 64 MiB, above the memory limit of 1 MiB",
+        ),
+        (
+            vec![
+                "plan",
+                &good_yaml,
+                "--planner",
+                "dtc",
+                "--memory-limit",
+                "lots",
+            ],
+            "--memory-limit is `lots`",
+        ),
+        (
             vec!["plan", &big_map, "--planner", "optimal"],
             "at most 16 cells on its shorter side",
         ),
@@ -817,4 +839,46 @@ fn outputs_are_whole_or_absent() {
         assert!(Path::new(f).exists(), "{f}");
     }
     assert_eq!(std::fs::read_dir(&d).expect("read scratch").count(), 3);
+}
+
+/// A map too large for the memory budget is refused at once, naming its
+/// size, the estimate and what helps, before anything large is allocated
+/// (a 16384² map used to abort after 33 s at 9 GiB).
+#[test]
+fn a_map_beyond_the_memory_budget_is_refused_before_planning() {
+    let d = scratch().join("memory");
+    std::fs::create_dir_all(&d).expect("folder");
+    // 8192 x 8192 free cells in a plain PGM of 64 MiB.
+    let n = 8192usize;
+    let mut pgm = format!("P5\n{n} {n}\n255\n").into_bytes();
+    pgm.resize(pgm.len() + n * n, 254);
+    let map = d.join("big.pgm");
+    std::fs::write(&map, pgm).expect("map");
+    let started = std::time::Instant::now();
+    let out = Command::new(bin())
+        .arg("plan")
+        .arg(&map)
+        .args(["--planner", "rect-priority", "--memory-limit", "2G"])
+        .args(["--out", "never.csv"])
+        .current_dir(&d)
+        .output()
+        .expect("run");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    for part in [
+        "8192x8192 cells",
+        "needs about",
+        "above the memory limit of 2.0 GiB",
+        "--resolution",
+    ] {
+        assert!(err.contains(part), "{part}: {err}");
+    }
+    assert!(
+        started.elapsed().as_secs() < 10,
+        "took {:?}",
+        started.elapsed()
+    );
+    assert!(!d.join("never.csv").exists());
+    let _ = std::fs::remove_dir_all(&d);
 }

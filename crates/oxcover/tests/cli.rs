@@ -343,6 +343,50 @@ fn simulate_executes_a_plan_and_scores_the_executed_path() {
     let (eval, _) = run(&["eval", &map, &csv, "--resolution", "0.5"]);
     assert_eq!(json(&eval)["coverage"], r["coverage"]);
     assert!(std::fs::metadata(&png).expect("png written").len() > 0);
+    assert!(r["warning"].is_null(), "{}", r["warning"]);
+}
+
+/// A robot that cannot accelerate falls behind its reference; the run ends
+/// at its time cap with little covered, and says so (it used to end with
+/// exit 0 and no word).
+#[test]
+fn simulate_warns_when_the_time_cap_cuts_the_run_short() {
+    let dir = scratch("sim-slow");
+    let map = fixture("movingai/room-32-32-4.map");
+    let spec = include_str!("../../../fixtures/robots/floor_cleaner.ron")
+        .replace("max_wheel_accel: 1.0", "max_wheel_accel: 0.002");
+    assert!(spec.contains("0.002"), "the spec's field changed form");
+    let spec_file = dir.join("sluggish.ron");
+    std::fs::write(&spec_file, spec).expect("write spec");
+    let report = dir.join("slow.json").display().to_string();
+    let out = Command::new(bin())
+        .args([
+            "simulate",
+            &map,
+            "--planner",
+            "boustrophedon",
+            "--resolution",
+            "0.5",
+        ])
+        .arg("--robot-spec")
+        .arg(&spec_file)
+        .args(["--report", &report])
+        .output()
+        .expect("run");
+    assert!(out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("warning: the run ended at its time cap"),
+        "{err}"
+    );
+    let r = json(&std::fs::read_to_string(&report).expect("read report"));
+    assert!(r["coverage"].as_f64().unwrap() < r["planned_coverage"].as_f64().unwrap());
+    assert!(
+        r["warning"]
+            .as_str()
+            .unwrap()
+            .contains("short of the path's end")
+    );
 }
 
 #[test]

@@ -56,6 +56,11 @@ pub(crate) struct PlanArgs {
     /// JSON report to write (metrics, planner, parameters, plan_ms).
     #[arg(long, value_name = "F.json")]
     pub(crate) report: Option<PathBuf>,
+    /// Refuse a map whose plan is estimated to need more memory than this
+    /// (e.g. 8G, 512M; `none` for no limit) [default: 3/4 of the machine's
+    /// memory].
+    #[arg(long, value_name = "SIZE")]
+    pub(crate) memory_limit: Option<String>,
 }
 
 /// The outputs `plan` would write, with their options.
@@ -84,7 +89,13 @@ pub(crate) fn map_and_request(a: &PlanArgs) -> Result<(OccupancyGrid, PlanReques
         boundary_pass: a.boundary_pass == OnOff::On,
         rooms: a.rooms == OnOff::On,
         time,
+        memory_limit: match a.memory_limit.as_deref() {
+            None => oxcover::memory::default_limit(),
+            Some("none") => None,
+            Some(size) => Some(oxcover::memory::parse_size(size)?),
+        },
     };
+    request.check_memory(&map, &a.map.display().to_string())?;
     Ok((map, request))
 }
 

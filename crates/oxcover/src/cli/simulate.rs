@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use clap::ValueEnum;
 use oxcover::grid::Point;
 use oxcover::pipeline::{plan, short_name};
-use oxcover::render::{Scene, render_to_file};
+use oxcover::render::{Scene, render_bytes};
 use oxcover::report::table;
 use oxcover::{Error, Result};
 
@@ -90,10 +90,10 @@ pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
         seed: p.seed,
     };
     let run = execute(&map, robot, &outcome.points, &cfg)?;
-    let mut written = Vec::new();
+    // Every output is made first and written as one set.
+    let mut files: Vec<(std::path::PathBuf, Vec<u8>)> = Vec::new();
     if let Some(f) = &p.out {
-        oxcover::output::write_file(f, to_csv(&run.samples).into_bytes())?;
-        written.push(f.clone());
+        files.push((f.clone(), to_csv(&run.samples).into_bytes()));
     }
     let executed: Vec<Point> = run
         .samples
@@ -119,8 +119,7 @@ pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
         rows: rows.clone(),
     };
     for f in [p.svg.as_deref(), p.png.as_deref()].into_iter().flatten() {
-        render_to_file(&scene, f)?;
-        written.push(f.to_path_buf());
+        files.push((f.to_path_buf(), render_bytes(&scene, f)?));
     }
     if let Some(f) = &p.report {
         let report = run.report(
@@ -130,9 +129,9 @@ pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
         );
         let json = serde_json::to_string_pretty(&report)
             .map_err(|e| Error::Internal(format!("report serialisation failed: {e}")))?;
-        oxcover::output::write_file(f, (json + "\n").into_bytes())?;
-        written.push(f.clone());
+        files.push((f.clone(), (json + "\n").into_bytes()));
     }
+    let written = oxcover::output::write_files(files)?;
     let mut out = super::out::stdout();
     let _ = writeln!(
         out,
@@ -145,6 +144,9 @@ pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
     let _ = write!(out, "{}", table(&rows));
     for w in written {
         let _ = writeln!(out, "wrote {}", w.display());
+    }
+    if let Some(w) = run.cut_short(outcome.evaluation.metrics.coverage, robot.tool_radius) {
+        let _ = writeln!(std::io::stderr(), "warning: {w}");
     }
     Ok(())
 }
