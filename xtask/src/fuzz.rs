@@ -198,7 +198,14 @@ fn feed(target: &Target, dir: &Path, input: &[u8]) -> Result<(), String> {
     let run = || match target.feed {
         Feed::Map(ext) => {
             let file = dir.join(format!("input.{ext}"));
-            if std::fs::write(&file, input).is_ok()
+            // PNG chunks carry CRCs: mend them, or nearly every mutation
+            // would stop at the first checksum instead of reaching the decoder.
+            let bytes = if ext == "png" {
+                mend_png_crcs(input)
+            } else {
+                input.to_vec()
+            };
+            if std::fs::write(&file, bytes).is_ok()
                 && let Ok(map) = read_map(&file, &ReadOptions::default())
             {
                 // What every command does next with a map.
@@ -253,6 +260,38 @@ fn feed(target: &Target, dir: &Path, input: &[u8]) -> Result<(), String> {
             .or_else(|| e.downcast_ref::<&str>().map(|s| (*s).to_string()))
             .unwrap_or_else(|| "panic".into())
     })
+}
+
+/// `bytes` with every whole PNG chunk's CRC recomputed (the rest unchanged).
+fn mend_png_crcs(bytes: &[u8]) -> Vec<u8> {
+    let mut v = bytes.to_vec();
+    let mut at = 8;
+    while at + 12 <= v.len() {
+        let len = u32::from_be_bytes([v[at], v[at + 1], v[at + 2], v[at + 3]]) as usize;
+        let Some(end) = (at + 8).checked_add(len).filter(|e| e + 4 <= v.len()) else {
+            break;
+        };
+        let crc = crc32(&v[at + 4..end]);
+        v[end..end + 4].copy_from_slice(&crc.to_be_bytes());
+        at = end + 4;
+    }
+    v
+}
+
+/// The CRC-32 of PNG chunks (ISO 3309), bit by bit: inputs are small.
+fn crc32(data: &[u8]) -> u32 {
+    let mut crc = !0u32;
+    for &b in data {
+        crc ^= u32::from(b);
+        for _ in 0..8 {
+            crc = if crc & 1 == 1 {
+                (crc >> 1) ^ 0xEDB8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
 }
 
 /// Numbers a mutation puts in place of one in the text.
@@ -491,6 +530,18 @@ mod tests {
         assert_eq!(run(7), run(7));
         assert_ne!(run(7), run(8));
         assert!(run(7).iter().filter(|m| **m != base).count() > 40);
+    }
+
+    #[test]
+    fn mended_png_crcs_are_the_real_ones() {
+        let png = std::fs::read(crate::root().join("fixtures/maps/pythonrobotics/test.png"))
+            .expect("fixture");
+        assert_eq!(mend_png_crcs(&png), png);
+        let mut broken = png.clone();
+        broken[20] ^= 0x10; // inside IHDR
+        let mended = mend_png_crcs(&broken);
+        assert_ne!(mended[29..33], png[29..33], "IHDR's CRC was not recomputed");
+        assert_eq!(mend_png_crcs(&mended), mended);
     }
 
     /// Every seed and saved regression, and a few hundred mutations of

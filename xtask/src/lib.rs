@@ -10,6 +10,7 @@
 //!   floor plans, scored by estimated time; `docs/efficiency.md`.
 //! - [`fuzz`]: every input parser fed mutated fixture bytes; any panic or
 //!   slow input is a finding.
+//! - [`memory_map`]: the large generated map of the memory measurements.
 //! - [`maps`]: plan and score every real map in `../shared/maps`; `docs/maps.md`.
 //! - [`reproduce`]: the paper reproductions (`siamantas2010`,
 //!   `siamantas2010-tracking`, `zhang2008`, `pavlicek2002`, `floorplans`,
@@ -25,6 +26,7 @@ pub mod bench;
 pub mod efficiency;
 pub mod fuzz;
 pub mod maps;
+pub mod memory_map;
 pub mod plot;
 pub mod reproduce;
 pub mod sweep;

@@ -24,6 +24,15 @@ enum Task {
         #[arg(long)]
         only: Option<String>,
     },
+    /// Write the large generated map of the memory measurements (grey PNG).
+    MemoryMap {
+        /// Side in pixels.
+        #[arg(long, default_value_t = 16384)]
+        size: u32,
+        /// PNG file to write.
+        #[arg(long)]
+        out: std::path::PathBuf,
+    },
     /// Plan and score every real map in ../shared/maps; write docs/maps.md.
     Maps {
         /// Only maps whose path contains this text.
@@ -110,6 +119,7 @@ fn main() -> anyhow::Result<()> {
     match Cli::parse().task {
         Task::Bench { no_run, only } => xtask::bench::run(no_run, only.as_deref()),
         Task::Maps { filter } => xtask::maps::run(filter.as_deref()),
+        Task::MemoryMap { size, out } => xtask::memory_map::run(size, &out),
         Task::Acceptance { filter, planners } => {
             xtask::acceptance::run(filter.as_deref(), planners.as_deref())
         }

@@ -60,24 +60,10 @@ pub enum Error {
         /// The operating system's reason.
         source: std::io::Error,
     },
-    /// Planning would need more memory than the budget allows.
-    #[error(
-        "{map}: planning {cells} cells with {planner} needs about {need}, above the memory limit of {limit} ({hint})"
-    )]
-    MemoryLimit {
-        /// The map and its size.
-        map: String,
-        /// Its cell count, for people.
-        cells: String,
-        /// The planner (and whether rooms are on).
-        planner: String,
-        /// The estimate, for people.
-        need: String,
-        /// The budget, for people.
-        limit: String,
-        /// What helps.
-        hint: String,
-    },
+    /// Planning would need more memory than the budget allows: the map, its
+    /// size, the planner, the estimate, the budget and what helps.
+    #[error("{0}")]
+    MemoryLimit(String),
     /// A planner broke one of its own guarantees: a bug, reported as exit 1.
     #[error("internal error: {0}")]
     Internal(String),

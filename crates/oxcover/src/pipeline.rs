@@ -179,14 +179,22 @@ impl PlanRequest {
             return Ok(());
         }
         let show = crate::memory::show;
-        Err(Error::MemoryLimit {
-            map: map_name.to_string(),
-            cells: format!("{w}x{h}"),
-            planner: format!("{name} (rooms {})", if self.rooms { "on" } else { "off" }),
-            need: show(need),
-            limit: show(limit),
-            hint: "a coarser --resolution for an image, a larger --tool-radius, --rooms off, or a higher --memory-limit if the machine has it".into(),
-        })
+        let mut helps = Vec::new();
+        if self.rooms {
+            helps.push("--rooms off");
+        }
+        helps.extend([
+            "a larger --tool-radius",
+            "the map image scaled down",
+            "a higher --memory-limit if the machine has the memory",
+        ]);
+        Err(Error::MemoryLimit(format!(
+            "{map_name}: planning {w}x{h} cells with {name} (rooms {}) needs about {}, above the memory limit of {} (what helps: {})",
+            if self.rooms { "on" } else { "off" },
+            show(need),
+            show(limit),
+            helps.join(", ")
+        )))
     }
 
     /// The same request for another robot and tool.

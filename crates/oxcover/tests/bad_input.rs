@@ -839,6 +839,66 @@ fn outputs_are_whole_or_absent() {
         assert!(Path::new(f).exists(), "{f}");
     }
     assert_eq!(std::fs::read_dir(&d).expect("read scratch").count(), 3);
+    std::fs::remove_dir_all(&d).expect("clear");
+    std::fs::create_dir_all(&d).expect("scratch");
+    let world = fixtures()
+        .join("../worlds/demir2018/fig05_polygon.ron")
+        .display()
+        .to_string();
+    let f = |n: &str| d.join(n).display().to_string();
+    let mut cases = vec![
+        // A missing folder for the map: found before exploring.
+        vec![
+            "explore".to_string(),
+            world.clone(),
+            "--out".into(),
+            f("e.csv"),
+            "--map".into(),
+            f("nodir/m.yaml"),
+        ],
+    ];
+    if Path::new("/dev/full").exists() {
+        // A device that refuses the bytes at write time: the report staged
+        // beside it is withdrawn.
+        cases.push(vec![
+            "plan".into(),
+            map.clone(),
+            "--planner".into(),
+            "dtc".into(),
+            "--report".into(),
+            f("r.json"),
+            "--out".into(),
+            "/dev/full".into(),
+        ]);
+        cases.push(vec![
+            "explore".into(),
+            world.clone(),
+            "--report".into(),
+            f("r.json"),
+            "--out".into(),
+            "/dev/full".into(),
+        ]);
+    }
+    for args in cases {
+        let out = Command::new(bin())
+            .args(&args)
+            .output()
+            .expect("run oxcover");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        let why = if args.contains(&"/dev/full".to_string()) {
+            "/dev/full: cannot write"
+        } else {
+            "does not exist"
+        };
+        assert!(err.contains(why), "{args:?}: {err}");
+        let left: Vec<_> = std::fs::read_dir(&d)
+            .expect("read scratch")
+            .filter_map(|e| e.ok().map(|e| e.file_name()))
+            .collect();
+        assert!(left.is_empty(), "{args:?} left behind: {left:?}");
+    }
 }
 
 /// A map too large for the memory budget is refused at once, naming its
@@ -870,7 +930,7 @@ fn a_map_beyond_the_memory_budget_is_refused_before_planning() {
         "8192x8192 cells",
         "needs about",
         "above the memory limit of 2.0 GiB",
-        "--resolution",
+        "--rooms off",
     ] {
         assert!(err.contains(part), "{part}: {err}");
     }
