@@ -33,13 +33,9 @@ pub fn run(size: u32, out: &Path) -> anyhow::Result<()> {
         let border = y == 0 || y == n - 1;
         let across = y % (n / 4) == 0 && y > 0;
         for (x, v) in row.iter_mut().enumerate() {
-            *v = if border || x == 0 || x == n - 1 || (across && !door.contains(&x)) {
-                wall
-            } else if block.contains(&x) && block.contains(&y) {
-                wall
-            } else {
-                free
-            };
+            let walled = border || x == 0 || x == n - 1 || (across && !door.contains(&x));
+            let blocked = block.contains(&x) && block.contains(&y);
+            *v = if walled || blocked { wall } else { free };
         }
         writer.write_all(&row)?;
     }
