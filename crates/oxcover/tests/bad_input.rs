@@ -506,6 +506,18 @@ fn bad_inputs_exit_2_with_one_line() {
             vec!["explore", &ok_world, "--start", "0.5,0.5", "--rays", "2"],
             "rays",
         ),
+        // Used to run for hours (no bound on laps).
+        (
+            vec![
+                "explore",
+                &ok_world,
+                "--start",
+                "0.5,0.5",
+                "--tool-radius",
+                "1e-6",
+            ],
+            "at most 10000 lanes across it",
+        ),
         (
             vec!["explore", &ok_world, "--start", "0.5,0.5", "--out", &no_dir],
             "does not exist",
