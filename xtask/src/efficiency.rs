@@ -122,12 +122,13 @@ fn mean(v: &[f64]) -> f64 {
     }
 }
 
-/// Runs the task.
+/// Runs the task; with `only` (comma-separated planner names), just those
+/// planners, and the tables are printed instead of written.
 ///
 /// # Errors
 /// When the shared maps are missing, a picture or the page cannot be
 /// written, or a complete planner fails or collides.
-pub fn run() -> anyhow::Result<()> {
+pub fn run(only: Option<&str>) -> anyhow::Result<()> {
     let maps = match crate::floor_plans() {
         Ok(m) => m,
         Err(e) => {
@@ -155,6 +156,7 @@ pub fn run() -> anyhow::Result<()> {
     let names: Vec<&'static str> = planners()
         .into_iter()
         .filter(|p| p.complete)
+        .filter(|p| only.is_none_or(|o| o.split(',').any(|n| n.trim() == p.name)))
         .map(|p| p.name)
         .collect();
     let docs = crate::root().join("docs");
@@ -338,10 +340,15 @@ pub fn run() -> anyhow::Result<()> {
         }
         md += "\n";
     }
-    md += DISCUSSION;
-    pictures(&settings, &docs, &mut md)?;
-    std::fs::write(docs.join("efficiency.md"), md)?;
-    println!("wrote docs/efficiency.md");
+    if only.is_some() {
+        // Some planners only: the tables are printed, the page is kept.
+        println!("{md}");
+    } else {
+        md += DISCUSSION;
+        pictures(&settings, &docs, &mut md)?;
+        std::fs::write(docs.join("efficiency.md"), md)?;
+        println!("wrote docs/efficiency.md");
+    }
     if !failures.is_empty() {
         anyhow::bail!("{} runs failed:\n{}", failures.len(), failures.join("\n"));
     }

@@ -50,7 +50,12 @@ enum Task {
     },
     /// Every complete planner, rooms on and off, on the real floor plans,
     /// scored by estimated time; write docs/efficiency.md.
-    Efficiency,
+    Efficiency {
+        /// Only these planners (comma-separated); prints the tables instead
+        /// of writing the page.
+        #[arg(long)]
+        planners: Option<String>,
+    },
     /// Feed every input parser mutated bytes of the fixture files; fail on a
     /// panic or a slow input (saved under target/fuzz/findings).
     Fuzz {
@@ -124,7 +129,7 @@ fn main() -> anyhow::Result<()> {
             xtask::acceptance::run(filter.as_deref(), planners.as_deref())
         }
         Task::Reproduce { name } => xtask::reproduce::run(&name),
-        Task::Efficiency => xtask::efficiency::run(),
+        Task::Efficiency { planners } => xtask::efficiency::run(planners.as_deref()),
         Task::Fuzz {
             seconds,
             seed,
