@@ -25,7 +25,7 @@ use oxcover::planners::{CoverageProblem, Start};
 use oxcover::render::{Scene, render_to_file};
 use oxcover::report::metric_rows;
 use oxcover_grid::components::components4;
-use oxcover_grid::io::write_ros_map;
+use oxcover_grid::io::ros_map_files;
 use oxcover_grid::{Cell, DiscRobot, OccupancyGrid, Point};
 use oxcover_robot::{Limits, RobotSpec};
 use rand::{RngExt, SeedableRng};
@@ -284,7 +284,12 @@ pub fn run() -> anyhow::Result<()> {
     let mut maps = Vec::new();
     for (e, w) in worlds.iter().enumerate() {
         let map = w.rasterise();
-        write_ros_map(&map, &maps_dir.join(format!("{}.yaml", w.name)))?;
+        // Written only when they changed: a run leaves the checkout clean.
+        for (path, bytes) in ros_map_files(&map, &maps_dir.join(format!("{}.yaml", w.name)))? {
+            if std::fs::read(&path).ok().as_deref() != Some(bytes.as_slice()) {
+                std::fs::write(&path, bytes)?;
+            }
+        }
         for (s, p) in starts(&map, e)?.into_iter().enumerate() {
             for planner in PLANNERS {
                 jobs.push((e, s, p, planner));
@@ -348,7 +353,11 @@ fn figure(
 
 fn page(worlds: &[World], results: &[Measured], details: &[SmoothDetails]) -> String {
     let mut md = String::from("# Lee et al. 2011: smooth coverage in closed loop\n\n");
-    md += "Command: `cargo xtask reproduce lee2011` (release). Environments: `fixtures/worlds/lee2011/*.ron`, rasterised to the ROS maps in `fixtures/maps/lee2011/` (0.05 m cells). Robot: `fixtures/robots/floor_cleaner.ron` (Create 2 geometry, DC-motor energy model; values and their sources in the file), body radius 0.17 m, brush radius 0.16 m. Reference limits: 0.3 m/s, 0.5 m/s², 1.5 rad/s, 3 rad/s², corners above 20° stop and turn in place. Controller: Klancar et al. (ζ = 0.7, g = 10), 50 Hz, no odometry noise. Ten seeded starts per environment, the same for every planner; no boundary pass. Every quantity is measured on the EXECUTED trajectory.\n\n";
+    let k = oxcover_robot::Klancar::default();
+    md += &format!(
+        "Command: `cargo xtask reproduce lee2011` (release). Environments: `fixtures/worlds/lee2011/*.ron`, rasterised to the ROS maps in `fixtures/maps/lee2011/` (0.05 m cells). Robot: `fixtures/robots/floor_cleaner.ron` (Create 2 geometry, DC-motor energy model; values and their sources in the file), body radius 0.17 m, brush radius 0.16 m. Reference limits: 0.3 m/s, 0.5 m/s², 1.5 rad/s, 3 rad/s², corners above 20° stop and turn in place. Controller: Klancar et al. (ζ = {}, g = {} /m², the controller's defaults), 50 Hz, no odometry noise. Ten seeded starts per environment, the same for every planner; no boundary pass. Every quantity is measured on the EXECUTED trajectory.\n\n",
+        k.zeta, k.g
+    );
     md += "Quantities (the seed's): coverage = covered / coverable cells; normalized time = run time / covered area; average velocity = executed length / run time; energy efficiency = covered area / energy.\n\n";
     md += "## All runs (3 environments × 10 starts), beside the paper\n\n";
     md += "| algorithm | coverage % | normalized time s/m² | average velocity cm/s | energy efficiency m²/kJ | collisions | tracking rms / max cm |\n|---|---:|---:|---:|---:|---:|---:|\n";
@@ -452,3 +461,31 @@ fn page(worlds: &[World], results: &[Measured], details: &[SmoothDetails]) -> St
 }
 
 const DISCUSSION: &str = include_str!("lee2011_discussion.md");
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The committed maps are what the worlds rasterise to with today's map
+    /// writer, so `reproduce lee2011` leaves them untouched (run with
+    /// `OXCOVER_BLESS=1` to rewrite them after a deliberate change).
+    #[test]
+    fn committed_maps_are_the_worlds_rasterised() {
+        let maps_dir = crate::root().join("fixtures/maps/lee2011");
+        let bless = std::env::var_os("OXCOVER_BLESS").is_some();
+        for w in worlds().unwrap() {
+            let yaml = maps_dir.join(format!("{}.yaml", w.name));
+            for (path, bytes) in ros_map_files(&w.rasterise(), &yaml).unwrap() {
+                if bless {
+                    std::fs::write(&path, &bytes).unwrap();
+                }
+                let committed = std::fs::read(&path).unwrap();
+                assert!(
+                    committed == bytes,
+                    "{} drifted from its world",
+                    path.display()
+                );
+            }
+        }
+    }
+}

@@ -18,8 +18,8 @@ pub struct Klancar {
 }
 
 impl Default for Klancar {
-    /// `ζ = 0.7`, `g = 10 /m²`: at `v_r = 0.3 m/s` on a straight line the
-    /// gain `k` is about 1.3 /s.
+    /// `ζ = 0.7`, `g = 40 /m²`: at `v_r = 0.3 m/s` on a straight line the
+    /// gain `k` is about 2.7 /s.
     fn default() -> Self {
         Self { zeta: 0.7, g: 40.0 }
     }
