@@ -76,6 +76,9 @@ fn nearest_target(c: &mut Criterion) {
             g.bench_with_input(BenchmarkId::new("cfcidt", &name), &src, |b, &s| {
                 b.iter(|| black_box(cf.nearest(&blocks, s).map(|f| f.distance)));
             });
+            g.bench_with_input(BenchmarkId::new("corridor", &name), &src, |b, &s| {
+                b.iter(|| black_box(cf.corridor_nearest(&blocks, s).map(|f| f.distance)));
+            });
         }
         g.finish();
     }
