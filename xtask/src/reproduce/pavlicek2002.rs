@@ -191,10 +191,18 @@ pub fn run() -> anyhow::Result<()> {
          - *\"The boustrophedon decomposition slightly reduces such redundant back and forth motions\"* (against \
          trapezoidal): **{}**. Boustrophedon makes {:.2}× the turns of trapezoidal and {:.2}× its length: both lay \
          lanes at the same spacing over the same free space, and fewer, larger cells change little of that.\n",
-        if (xt as f64) <= 1.2 * bt as f64 { "reproduced" } else { "contradicted" },
+        if (xt as f64) <= 1.2 * bt as f64 {
+            "reproduced"
+        } else {
+            "contradicted"
+        },
         xt as f64 / bt.max(1) as f64,
         xe / be.max(1e-9),
-        if bt < tt { "reproduced" } else { "not reproduced" },
+        if bt < tt {
+            "reproduced"
+        } else {
+            "not reproduced"
+        },
         bt as f64 / tt.max(1) as f64,
         bl / tl.max(1e-9),
     );

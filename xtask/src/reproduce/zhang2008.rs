@@ -295,7 +295,11 @@ fn discussion(results: &[Result]) -> String {
         rp.len(),
         verdict(above90),
         rp.len(),
-        if above95 > 0 { "reproduced" } else { "not reproduced" },
+        if above95 > 0 {
+            "reproduced"
+        } else {
+            "not reproduced"
+        },
         rp.len(),
         verdict(below10),
     )
