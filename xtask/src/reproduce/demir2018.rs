@@ -177,22 +177,22 @@ fn page(results: &[Measured]) -> String {
     );
     let _ = writeln!(
         md,
-        "Scoring: the contract's metrics on each world's raster (2.5 cm cells, robot radius {r} m, tool {t} m), so `coverage` is of the cells a robot of that radius could cover and `collisions` counts path samples on cells the contract calls inadmissible. `disc hits` is checked exactly against the polygons after every move. True critical points are computed exactly from the polygons (x-extremal vertices; a wall along y counts once; stretches whose x varies by less than the planner's 1 cm hysteresis count as along y). A true point is found when a detection lies within {keep:.2} m (convex) or {keep2:.2} m (concave: in a corner the robot stops away from the apex) of it. `offline` is the `boustrophedon` planner given the whole raster, lanes along y like ours, with its boundary pass. `graph loops` is edges − nodes + 1, the number of independent loops of the discovered graph; the Reeb graph of a connected free space has one loop per obstacle (every obstacle of these worlds stands apart from the others and from the walls by more than the robot's width), so a shortfall counts the cells the graph is missing.\n",
+        "Scoring: the contract's metrics on each world's raster (2.5 cm cells, robot radius {r} m, tool {t} m), so `coverage` is of the cells a robot of that radius could cover and `collisions` counts path samples on cells the contract calls inadmissible. `disc hits` is checked exactly against the polygons after every move. True critical points are computed exactly from the polygons (x-extremal vertices; a wall along y counts once; stretches whose x varies by less than the planner's 1 cm hysteresis count as along y). A true point is found when a detection lies within {keep:.2} m (convex) or {keep2:.2} m (concave: in a corner the robot stops away from the apex) of it. `offline` is the `boustrophedon` planner given the whole raster, lanes along y like ours, with its boundary pass. `graph loops` is edges − nodes + 1, the number of independent loops of the discovered graph; the Reeb graph of a connected free space has one loop per obstacle (every obstacle of these worlds stands apart from the others and from the walls by more than the robot's width), so a shortfall counts the cells the graph is missing. `three-ray test decided` counts the turning points (before merging repeats) whose class the seed's three-ray test gave and the follower's turn agreed with; the others were classified by the follower alone (our fallback, where the three rays do not decide).\n",
         r = cfg.robot_radius,
         t = cfg.tool_radius,
         keep = found_within(CONVEX, keep),
         keep2 = found_within(CONCAVE, keep),
     );
     md += "## Results without noise\n\n";
-    md += "| world | coverage % | collisions | disc hits | path m | critical points found | same class | extra | graph nodes / edges | graph loops / obstacles | cycles | laps | transit m | offline coverage % | offline path m | s |\n";
-    md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    md += "| world | coverage % | collisions | disc hits | path m | critical points found | same class | extra | three-ray test decided | graph nodes / edges | graph loops / obstacles | cycles | laps | transit m | offline coverage % | offline path m | s |\n";
+    md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for m in results {
         let o = &m.clean;
         let e = &o.exploration;
         let mt = &o.evaluation.metrics;
         let _ = writeln!(
             md,
-            "| {} | {:.2} | {} | {} | {:.1} | {}/{} | {} | {} | {} / {} | {} / {} | {} | {} | {:.1} | {:.2} | {:.1} | {:.1} |",
+            "| {} | {:.2} | {} | {} | {:.1} | {}/{} | {} | {} | {}/{} | {} / {} | {} / {} | {} | {} | {:.1} | {:.2} | {:.1} | {:.1} |",
             m.world.name,
             100.0 * mt.coverage,
             mt.collisions,
@@ -202,6 +202,8 @@ fn page(results: &[Measured]) -> String {
             o.truth.len(),
             o.same_class,
             o.spurious,
+            e.counters.confirmed,
+            e.counters.turning_points,
             e.graph.nodes.len(),
             e.graph.edges.len(),
             (e.graph.edges.len() + 1).saturating_sub(e.graph.nodes.len()),
