@@ -3,7 +3,9 @@
 //! each cell in its own colour, drawn as the band its lanes sweep; (c) the
 //! boustrophedon adjacency graph (a node at each cell's lane centroid); (d)
 //! the border-expansion roads coloured by safety level (blue at the walls,
-//! red at the centre).
+//! red at the centre) with their adjacency graph over them, as Fig. 10 (a)
+//! and (c) draw it: a node on each road (its cell nearest the road's
+//! centroid), an edge for each possible transition between two roads.
 
 use std::path::Path;
 
@@ -118,7 +120,7 @@ fn graph_panel(d: &SliceDecomposition, plannable: &Grid<bool>, free: &Grid<bool>
     px
 }
 
-/// Road cells coloured by level.
+/// Road cells coloured by level, and the road adjacency graph.
 fn roads_panel(b: &BorderExpansion, plannable: &Grid<bool>, free: &Grid<bool>) -> Panel {
     let mut px = base(plannable, free);
     let top = b.levels.max(2) - 1;
@@ -132,6 +134,53 @@ fn roads_panel(b: &BorderExpansion, plannable: &Grid<bool>, free: &Grid<bool>) -
         for &c in &road.cells {
             px[c] = colour;
         }
+    }
+    // Fig. 10c: a node on each road, an edge per possible transition.
+    let nodes: Vec<(f64, f64)> = b
+        .roads
+        .iter()
+        .map(|road| {
+            let n = road.cells.len().max(1) as f64;
+            let (sr, sc) = road
+                .cells
+                .iter()
+                .fold((0.0, 0.0), |(r, c), x| (r + x.row as f64, c + x.col as f64));
+            let (mr, mc) = (sr / n, sc / n);
+            let d =
+                |x: &oxcover_grid::Cell| (x.row as f64 - mr).powi(2) + (x.col as f64 - mc).powi(2);
+            road.cells
+                .iter()
+                .min_by(|a, b| d(a).total_cmp(&d(b)))
+                .map_or((mc + 0.5, mr + 0.5), |x| {
+                    (x.col as f64 + 0.5, x.row as f64 + 0.5)
+                })
+        })
+        .collect();
+    let mut dot = |p: (f64, f64), r: i64, colour: [u8; 3]| {
+        for dy in -r..=r {
+            for dx in -r..=r {
+                let q = oxcover_grid::Point::new(p.0 + dx as f64, p.1 + dy as f64);
+                if let Some(c) = oxcover_grid::traverse::cell_of(&px, q) {
+                    px[c] = colour;
+                }
+            }
+        }
+    };
+    for &(a, e) in &b.edges {
+        let (p, q) = (nodes[a], nodes[e]);
+        let n = (q.0 - p.0).abs().max((q.1 - p.1).abs()).ceil().max(1.0) as usize;
+        for i in 0..=n {
+            let t = i as f64 / n as f64;
+            dot(
+                (p.0 + t * (q.0 - p.0), p.1 + t * (q.1 - p.1)),
+                0,
+                [20, 20, 20],
+            );
+        }
+    }
+    for &p in &nodes {
+        dot(p, 2, [0, 0, 0]);
+        dot(p, 1, [255, 255, 255]);
     }
     px
 }

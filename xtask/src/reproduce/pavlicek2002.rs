@@ -298,7 +298,7 @@ pub fn run() -> anyhow::Result<()> {
         let counts = decomposition_figure(map, &out.join(file))?;
         let _ = writeln!(
             md,
-            "Pavlíček 2002's Fig. 8 on {name}, lanes at 0° (horizontal), one coverage cell (12 px) apart: (a, top left) trapezoidal decomposition, {} cells; (b, top right) boustrophedon decomposition, {} cells; (c, bottom left) the boustrophedon adjacency graph, {} edges; (d, bottom right) the border-expansion roads, {} roads on {} safety levels, blue at the walls to red at the centre. Dark grey: walls and unknown; light grey: free but not reachable by the robot disc.\n\n![Fig. 8 on {name}]({file})\n",
+            "Pavlíček 2002's Fig. 8 on {name}, lanes at 0° (horizontal), one coverage cell (12 px) apart: (a, top left) trapezoidal decomposition, {} cells; (b, top right) boustrophedon decomposition, {} cells; (c, bottom left) the boustrophedon adjacency graph, {} edges; (d, bottom right) the border-expansion roads, {} roads on {} safety levels, blue at the walls to red at the centre, with the road adjacency graph of Fig. 10c over them (a white node on each road, a black edge for each possible transition between roads). Dark grey: walls and unknown; light grey: free but not reachable by the robot disc.\n\n![Fig. 8 on {name}]({file})\n",
             counts.0, counts.1, counts.2, counts.3, counts.4
         );
         for (m, p) in methods(false) {
