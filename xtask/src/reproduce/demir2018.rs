@@ -109,15 +109,29 @@ pub fn measure() -> anyhow::Result<Vec<Measured>> {
 /// World files, planner failures, file writes.
 pub fn run() -> anyhow::Result<()> {
     let out = dir()?;
-    let results = measure()?;
-    for m in &results {
-        figure(m, &out.join(format!("demir2018_{}.png", m.world.name)))?;
-    }
-    let page = page(&results);
+    let page = generate(Some(&out))?;
     std::fs::write(out.join("demir2018.md"), page)?;
     println!("wrote docs/reproduction/demir2018.md");
     Ok(())
 }
+
+/// Runs the experiment and returns the page; with `figures`, writes the
+/// figures there.
+///
+/// # Errors
+/// World files, planner failures, file writes.
+pub fn generate(figures: Option<&std::path::Path>) -> anyhow::Result<String> {
+    let results = measure()?;
+    if let Some(out) = figures {
+        for m in &results {
+            figure(m, &out.join(format!("demir2018_{}.png", m.world.name)))?;
+        }
+    }
+    Ok(page(&results))
+}
+
+/// Wall-clock columns of the page, masked when it is compared.
+pub const TIME_COLUMNS: &[&str] = &["s"];
 
 fn figure(m: &Measured, file: &std::path::Path) -> anyhow::Result<()> {
     let o = &m.clean;
