@@ -111,6 +111,22 @@ pub fn same_page(
     ))
 }
 
+/// The directory of the reproduction pages.
+pub(crate) fn dir() -> anyhow::Result<std::path::PathBuf> {
+    let d = crate::root().join("docs/reproduction");
+    std::fs::create_dir_all(&d)?;
+    Ok(d)
+}
+
+/// Quantile (nearest rank, `q` in 0..=1) of sorted values.
+pub(crate) fn quantile(sorted: &[f64], q: f64) -> f64 {
+    if sorted.is_empty() {
+        return f64::NAN;
+    }
+    let i = ((sorted.len() - 1) as f64 * q).round() as usize;
+    sorted[i.min(sorted.len() - 1)]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -127,20 +143,4 @@ mod tests {
         let intro = page.replace("3 maps", "4 maps");
         assert_ne!(stable(page, &cols, &lines), stable(&intro, &cols, &lines));
     }
-}
-
-/// The directory of the reproduction pages.
-pub(crate) fn dir() -> anyhow::Result<std::path::PathBuf> {
-    let d = crate::root().join("docs/reproduction");
-    std::fs::create_dir_all(&d)?;
-    Ok(d)
-}
-
-/// Quantile (nearest rank, `q` in 0..=1) of sorted values.
-pub(crate) fn quantile(sorted: &[f64], q: f64) -> f64 {
-    if sorted.is_empty() {
-        return f64::NAN;
-    }
-    let i = ((sorted.len() - 1) as f64 * q).round() as usize;
-    sorted[i.min(sorted.len() - 1)]
 }
