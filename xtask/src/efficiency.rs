@@ -374,7 +374,7 @@ fn short(name: &str) -> &str {
 /// The room units and the `lanes` path (rooms on) of three maps.
 fn pictures(settings: &[Setting], docs: &std::path::Path, md: &mut String) -> anyhow::Result<()> {
     let wanted = ["lab_c.png", "freiburg_building79.png", "simple_rooms.yaml"];
-    *md += "## Pictures\n\nRoom units (one colour each: rooms of the morphological segmentation, cut into connected parts of the C-space) and the `lanes` path with rooms on.\n\n";
+    *md += "## Pictures\n\nRoom units (one colour each: rooms of the medial-axis (voronoi) segmentation that `plan` uses, cut into connected parts of the C-space) and the `lanes` path with rooms on.\n\n";
     for s in settings {
         for (name, map) in &s.maps {
             let Some(w) = wanted.iter().find(|w| name.ends_with(*w)) else {

@@ -32,7 +32,7 @@ pub(crate) struct PlanArgs {
     /// Append a pass along obstacle boundaries covering what the planner missed.
     #[arg(long, value_enum, value_name = "on|off", default_value_t = OnOff::On)]
     pub(crate) boundary_pass: OnOff,
-    /// Plan room by room (rooms found by morphological segmentation, each
+    /// Plan room by room (the rooms of `oxcover segment`, cut at doors; each
     /// finished before the next, in the order of least transit time); off
     /// plans the whole map at once with the papers' nearest-first boundary pass
     /// (on, a map with one room is planned at once with the straightened pass).
