@@ -246,14 +246,17 @@ impl<'a> Clearance<'a> {
     /// Checks keeping `distance` (< 1) cells from non-plannable cells.
     pub(crate) fn new(mask: &'a Grid<bool>, distance: f64) -> Self {
         let (w, h) = (mask.width(), mask.height());
-        // Rows then columns: a cell is open when its ±2 window is all plannable.
+        // Rows then columns: a cell is open when its ±1 window is all
+        // plannable. `point_clearance` looks no farther than the 3 × 3
+        // window (the distance is below one cell), so it holds for every
+        // point of an open cell.
         let rows = Grid::from_fn(w, h, |c| {
-            (c.col >= 2 && c.col + 2 < w)
-                && (c.col - 2..=c.col + 2).all(|x| mask[Cell::new(c.row, x)])
+            (c.col >= 1 && c.col + 1 < w)
+                && (c.col - 1..=c.col + 1).all(|x| mask[Cell::new(c.row, x)])
         });
         let open = Grid::from_fn(w, h, |c| {
-            (c.row >= 2 && c.row + 2 < h)
-                && (c.row - 2..=c.row + 2).all(|y| rows[Cell::new(y, c.col)])
+            (c.row >= 1 && c.row + 1 < h)
+                && (c.row - 1..=c.row + 1).all(|y| rows[Cell::new(y, c.col)])
         });
         Self {
             mask,
@@ -272,7 +275,29 @@ impl<'a> Clearance<'a> {
 
     /// Whether every point of `a → b` does (checked as [`segment_clearance`]).
     pub(crate) fn segment(&self, a: GridPoint, b: GridPoint) -> bool {
-        segment_points(a, b, self.distance).all(|q| self.point(q))
+        self.box_open(a, b) || segment_points(a, b, self.distance).all(|q| self.point(q))
+    }
+
+    /// Whether every cell of the segment's bounding box (grown by a hair,
+    /// for rounding; at most 16 cells) is open: then every sample of
+    /// [`Self::segment`] lies in an open cell, and the answer is known
+    /// without sampling. The same answer, faster: short segments between
+    /// curve samples are most of what `smooth` checks.
+    fn box_open(&self, a: GridPoint, b: GridPoint) -> bool {
+        const HAIR: f64 = 1e-9;
+        let (x0, x1) = (a.x.min(b.x) - HAIR, a.x.max(b.x) + HAIR);
+        let (y0, y1) = (a.y.min(b.y) - HAIR, a.y.max(b.y) + HAIR);
+        if !(x0 >= 0.0
+            && y0 >= 0.0
+            && x1 < self.open.width() as f64
+            && y1 < self.open.height() as f64)
+        {
+            return false;
+        }
+        let (c0, c1) = (x0.floor() as usize, x1.floor() as usize);
+        let (r0, r1) = (y0.floor() as usize, y1.floor() as usize);
+        (c1 - c0 + 1) * (r1 - r0 + 1) <= 16
+            && (r0..=r1).all(|r| (c0..=c1).all(|c| self.open[Cell::new(r, c)]))
     }
 }
 
@@ -417,6 +442,27 @@ mod tests {
             let (a, b) = (GridPoint::new(a.0, a.1), GridPoint::new(b.0, b.1));
             proptest::prop_assert_eq!(fast.segment(a, b), segment_clearance(&m, a, b, c));
             proptest::prop_assert_eq!(fast.point(a), point_clearance(&m, a, c));
+        }
+
+        /// Short segments, where the bounding-box shortcut answers, agree
+        /// too (also on cell edges and corners).
+        #[test]
+        fn short_segments_agree_with_the_plain_check(
+            seed in proptest::prelude::any::<u64>(),
+            a in (0.0..12.0f64, 0.0..12.0f64),
+            d in (-1.5..1.5f64, -1.5..1.5f64),
+            snap in proptest::prelude::any::<bool>(),
+            c in 0.05..0.95f64,
+        ) {
+            let map = oxcover_grid::random::random_density(12, 12, 0.1, seed);
+            let m = map.free_mask();
+            let fast = Clearance::new(&m, c);
+            let mut a = GridPoint::new(a.0, a.1);
+            if snap {
+                a = GridPoint::new(a.x.round(), a.y.round());
+            }
+            let b = GridPoint::new(a.x + d.0, a.y + d.1);
+            proptest::prop_assert_eq!(fast.segment(a, b), segment_clearance(&m, a, b, c));
         }
     }
 
