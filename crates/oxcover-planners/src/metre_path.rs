@@ -218,7 +218,15 @@ impl<'a> PathBuilder<'a> {
                 .wave
                 .retrace(near.first())
                 .ok_or_else(|| Error::Internal("leftover retrace failed".into()))?;
-            self.straighten(&route[1..], None, |_, _, _| true);
+            if route.len() == 1 {
+                // The path ends in a wanted cell but off its centre, out of
+                // reach of it (a loop point pushed towards a wall, with a
+                // reach under half a cell): go to the centre, or this loop
+                // would find the same cell for ever.
+                self.push(cell_center(here));
+            } else {
+                self.straighten(&route[1..], None, |_, _, _| true);
+            }
         }
     }
 
@@ -231,7 +239,7 @@ impl<'a> PathBuilder<'a> {
     }
 }
 
-/// Clearance checks against a plannable mask, with the cells whose 5 × 5
+/// Clearance checks against a plannable mask, with the cells whose 3 × 3
 /// neighbourhood is plannable precomputed: every point of such a cell is at
 /// least one cell from any non-plannable cell, so checks for a clearance
 /// under one cell pass there at once (most of an open floor).

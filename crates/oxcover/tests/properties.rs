@@ -147,3 +147,22 @@ fn leftovers_are_judged_by_the_contract_samples() {
         check(&map, robot, p.name, p.complete).unwrap();
     }
 }
+
+/// Found by a search for runs that never end (issue 17's session): `lanes`
+/// ended an edge loop on a point pushed 0.45 cell towards a wall, in a
+/// coverage cell still wanted, with a visit reach under half a cell; the
+/// leftover pass found that same cell at distance 0 again and again, for
+/// ever. It now steps to the cell's centre.
+#[test]
+fn lanes_ends_in_a_wanted_cell_off_centre() {
+    let map = random_map(0, 47, 77, 5, 1.0);
+    let robot = DiscRobot::new(2.0, 0.4).unwrap();
+    let request = PlanRequest::new("lanes", 1.0)
+        .unwrap()
+        .robot(robot)
+        .start(oxcover::planners::Start::LargestRegion)
+        .rooms(false);
+    let out = plan(&map, &request).unwrap();
+    let m = &out.evaluation.metrics;
+    assert_eq!((m.coverage, m.collisions), (1.0, 0));
+}
