@@ -92,32 +92,40 @@ fn graph_panel(d: &SliceDecomposition, plannable: &Grid<bool>, free: &Grid<bool>
             (sx / n, sy / n)
         })
         .collect();
-    let mut dot = |p: (f64, f64), r: i64, colour: [u8; 3]| {
-        for dy in -r..=r {
-            for dx in -r..=r {
-                let q = oxcover_grid::Point::new(p.0 + dx as f64, p.1 + dy as f64);
-                if let Some(c) = oxcover_grid::traverse::cell_of(&px, q) {
-                    px[c] = colour;
-                }
+    draw_graph(&mut px, &centres, &d.edges);
+    for &c in &centres {
+        dot(&mut px, c, 2, [200, 0, 0]);
+    }
+    px
+}
+
+/// A filled square of side `2r + 1` pixels centred on `p`.
+fn dot(px: &mut Panel, p: (f64, f64), r: i64, colour: [u8; 3]) {
+    for dy in -r..=r {
+        for dx in -r..=r {
+            let q = oxcover_grid::Point::new(p.0 + dx as f64, p.1 + dy as f64);
+            if let Some(c) = oxcover_grid::traverse::cell_of(px, q) {
+                px[c] = colour;
             }
         }
-    };
-    for &(a, b) in &d.edges {
-        let (p, q) = (centres[a], centres[b]);
+    }
+}
+
+/// The edges of a graph as dark straight lines between its node positions.
+fn draw_graph(px: &mut Panel, nodes: &[(f64, f64)], edges: &[(usize, usize)]) {
+    for &(a, b) in edges {
+        let (p, q) = (nodes[a], nodes[b]);
         let n = (q.0 - p.0).abs().max((q.1 - p.1).abs()).ceil().max(1.0) as usize;
         for i in 0..=n {
             let t = i as f64 / n as f64;
             dot(
+                px,
                 (p.0 + t * (q.0 - p.0), p.1 + t * (q.1 - p.1)),
                 0,
                 [20, 20, 20],
             );
         }
     }
-    for &c in &centres {
-        dot(c, 2, [200, 0, 0]);
-    }
-    px
 }
 
 /// Road cells coloured by level, and the road adjacency graph.
@@ -156,31 +164,10 @@ fn roads_panel(b: &BorderExpansion, plannable: &Grid<bool>, free: &Grid<bool>) -
                 })
         })
         .collect();
-    let mut dot = |p: (f64, f64), r: i64, colour: [u8; 3]| {
-        for dy in -r..=r {
-            for dx in -r..=r {
-                let q = oxcover_grid::Point::new(p.0 + dx as f64, p.1 + dy as f64);
-                if let Some(c) = oxcover_grid::traverse::cell_of(&px, q) {
-                    px[c] = colour;
-                }
-            }
-        }
-    };
-    for &(a, e) in &b.edges {
-        let (p, q) = (nodes[a], nodes[e]);
-        let n = (q.0 - p.0).abs().max((q.1 - p.1).abs()).ceil().max(1.0) as usize;
-        for i in 0..=n {
-            let t = i as f64 / n as f64;
-            dot(
-                (p.0 + t * (q.0 - p.0), p.1 + t * (q.1 - p.1)),
-                0,
-                [20, 20, 20],
-            );
-        }
-    }
+    draw_graph(&mut px, &nodes, &b.edges);
     for &p in &nodes {
-        dot(p, 2, [0, 0, 0]);
-        dot(p, 1, [255, 255, 255]);
+        dot(&mut px, p, 2, [0, 0, 0]);
+        dot(&mut px, p, 1, [255, 255, 255]);
     }
     px
 }
