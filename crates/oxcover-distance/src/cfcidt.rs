@@ -574,18 +574,52 @@ mod tests {
     use oxcover_grid::random::random_density;
     use proptest::prelude::*;
 
+    /// A seeded random map with random targets, its block map, the source
+    /// (first free cell) and the exact nearest-target distance.
+    struct Case {
+        free: Grid<bool>,
+        targets: Grid<bool>,
+        src: Cell,
+        want: Option<u32>,
+        map: BlockMap,
+    }
+
+    fn case(
+        w: usize,
+        h: usize,
+        density: f64,
+        seed: u64,
+        target_density: f64,
+        k: usize,
+    ) -> Option<Case> {
+        let free = random_density(w, h, density, seed).free_mask();
+        let targets = random_density(w, h, 1.0 - target_density, seed ^ 0xface)
+            .free_mask()
+            .map(|f| !f);
+        let src = free.true_cells().next()?;
+        let full = bfs_distances(&free, src);
+        let want = free
+            .cells()
+            .filter(|&c| targets[c])
+            .filter_map(|c| full[c])
+            .min();
+        let mut map = BlockMap::new(&free, k);
+        for c in targets.true_cells() {
+            map.set_target(c, true);
+        }
+        Some(Case {
+            free,
+            targets,
+            src,
+            want,
+            map,
+        })
+    }
+
     proptest! {
         #[test]
         fn same_distance_as_full_bfs(w in 2usize..60, h in 2usize..60, density in 0.0f64..0.45, seed in any::<u64>(), target_density in 0.0f64..0.05, k in 1usize..9) {
-            let free = random_density(w, h, density, seed).free_mask();
-            let targets = random_density(w, h, 1.0 - target_density, seed ^ 0xface).free_mask().map(|f| !f);
-            let Some(src) = free.true_cells().next() else { return Ok(()); };
-            let full = bfs_distances(&free, src);
-            let want = free.cells().filter(|&c| targets[c]).filter_map(|c| full[c]).min();
-            let mut map = BlockMap::new(&free, k);
-            for c in targets.true_cells() {
-                map.set_target(c, true);
-            }
+            let Some(Case { free, targets, src, want, mut map }) = case(w, h, density, seed, target_density, k) else { return Ok(()); };
             let mut search = CoarseToFine::new();
             let got = search.nearest(&map, src);
             prop_assert_eq!(got.as_ref().map(|f| f.distance), want);
@@ -611,15 +645,7 @@ mod tests {
         /// its lower bound holds.
         #[test]
         fn corridor_search_is_a_valid_upper_bound(w in 2usize..60, h in 2usize..60, density in 0.0f64..0.45, seed in any::<u64>(), target_density in 0.0f64..0.05, k in 1usize..9) {
-            let free = random_density(w, h, density, seed).free_mask();
-            let targets = random_density(w, h, 1.0 - target_density, seed ^ 0xface).free_mask().map(|f| !f);
-            let Some(src) = free.true_cells().next() else { return Ok(()); };
-            let full = bfs_distances(&free, src);
-            let want = free.cells().filter(|&c| targets[c]).filter_map(|c| full[c]).min();
-            let mut map = BlockMap::new(&free, k);
-            for c in targets.true_cells() {
-                map.set_target(c, true);
-            }
+            let Some(Case { free, targets, src, want, map }) = case(w, h, density, seed, target_density, k) else { return Ok(()); };
             let got = CoarseToFine::new().corridor_nearest(&map, src);
             prop_assert_eq!(got.is_some(), want.is_some());
             if let (Some(f), Some(want)) = (got, want) {
