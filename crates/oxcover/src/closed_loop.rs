@@ -20,6 +20,10 @@ use crate::error::{Error, Result};
 use crate::metrics::{Evaluation, MetricParams, evaluate};
 use crate::report::{SimulateReport, metric_rows};
 
+/// The bundled robot description (`fixtures/robots/floor_cleaner.ron`), the
+/// default of `oxcover simulate`.
+pub const FLOOR_CLEANER: &str = include_str!("../assets/floor_cleaner.ron");
+
 /// Which tracking controller.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ControllerKind {

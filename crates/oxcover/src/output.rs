@@ -138,6 +138,130 @@ pub fn write_file(path: &Path, bytes: Vec<u8>) -> Result<()> {
     write_files(vec![(path.to_path_buf(), bytes)]).map(|_| ())
 }
 
+/// A path as it will be opened: canonical when it exists, else its
+/// existing folder made canonical with the file name added.
+fn resolved(p: &Path) -> std::path::PathBuf {
+    if let Ok(c) = p.canonicalize() {
+        return c;
+    }
+    let parent = p.parent().filter(|d| !d.as_os_str().is_empty());
+    let dir = parent.map_or_else(|| Path::new(".").canonicalize(), Path::canonicalize);
+    match (dir, p.file_name()) {
+        (Ok(d), Some(f)) => d.join(f),
+        _ => p.to_path_buf(),
+    }
+}
+
+/// An output a command will write: its option, its path, and the file name
+/// endings its format allows (empty: any name).
+pub type Output<'a> = (&'static str, &'a Path, &'static [&'static str]);
+
+/// Any file name.
+pub const ANY: &[&str] = &[];
+/// An SVG picture.
+pub const SVG: &[&str] = &["svg"];
+/// A PNG picture.
+pub const PNG: &[&str] = &["png"];
+/// A picture in the format its name ends in.
+pub const PICTURE: &[&str] = &["svg", "png"];
+/// A ROS map (its image is written beside it).
+pub const YAML: &[&str] = &["yaml"];
+
+/// The outputs among `candidates` that were asked for.
+pub fn asked<'a, const N: usize>(
+    candidates: [(&'static str, Option<&'a Path>, &'static [&'static str]); N],
+) -> Vec<Output<'a>> {
+    candidates
+        .into_iter()
+        .filter_map(|(f, p, e)| p.map(|p| (f, p, e)))
+        .collect()
+}
+
+/// Refuses, before any work, an output that could not be written or would
+/// destroy a file: its folder missing, not writable or not a folder; the
+/// path a folder; a file name ending other than its format's; one of the
+/// inputs or another output (`--out f.csv --report f.csv`, `plan m.pgm
+/// --out m.pgm`: the second write would silently destroy the first file).
+pub fn check_outputs(inputs: &[&Path], outputs: &[Output<'_>]) -> Result<()> {
+    let ins: Vec<std::path::PathBuf> = inputs.iter().map(|p| resolved(p)).collect();
+    let mut seen: Vec<(&'static str, std::path::PathBuf)> = Vec::new();
+    for &(flag, out, endings) in outputs {
+        let bad = |expected: String| Error::BadParameter {
+            name: flag,
+            value: out.display().to_string(),
+            expected,
+        };
+        let r = resolved(out);
+        if let Some(i) = ins.iter().position(|x| *x == r) {
+            return Err(bad(format!(
+                "a file other than the input {}",
+                inputs[i].display()
+            )));
+        }
+        let stream = std::fs::metadata(out).is_ok_and(|m| !m.is_file() && !m.is_dir());
+        if let Some((other, _)) = seen.iter().find(|(_, x)| *x == r && !stream) {
+            return Err(bad(format!("a file other than the one {other} writes")));
+        }
+        let ext = out
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase)
+            .unwrap_or_default();
+        if !endings.is_empty() && !endings.contains(&ext.as_str()) {
+            return Err(bad(format!("a file name ending in {}", one_of(endings))));
+        }
+        if out.is_dir() {
+            return Err(bad("a file name, not a folder".into()));
+        }
+        let folder = out
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or_else(|| Path::new("."));
+        if !folder.is_dir() {
+            return Err(bad(format!(
+                "a file in an existing folder ({} does not exist)",
+                folder.display()
+            )));
+        }
+        if !writable(folder) {
+            return Err(bad(format!(
+                "a file in a folder this user may write ({} is not writable)",
+                folder.display()
+            )));
+        }
+        seen.push((flag, r));
+    }
+    Ok(())
+}
+
+/// `.a`, `.a or .b`, `.a, .b or .c`.
+fn one_of(endings: &[&str]) -> String {
+    let names: Vec<String> = endings.iter().map(|e| format!(".{e}")).collect();
+    match names.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+        _ => names.concat(),
+    }
+}
+
+/// Whether a file can be created in `folder` (tried with a probe file that
+/// is removed at once: permission bits do not tell about read-only mounts).
+fn writable(folder: &Path) -> bool {
+    let probe = folder.join(format!(".oxcover-probe-{}", std::process::id()));
+    match std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&probe)
+    {
+        Ok(_) => {
+            let _ = std::fs::remove_file(&probe);
+            true
+        }
+        // Left over by a killed run of this very process id: still writable.
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => true,
+        Err(_) => false,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

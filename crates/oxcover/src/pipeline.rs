@@ -18,6 +18,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use oxcover_decomp::{RoomParams, voronoi};
+use oxcover_grid::io::{ReadOptions, read_map};
 use oxcover_grid::{Cell, Coverability, DiscRobot, OccupancyGrid, Point, components4};
 use oxcover_planners::{
     BoundaryRoute, CoverageProblem, PlanOutput, Planner, PlannerOptions, RoomUnits, Start,
@@ -31,6 +32,30 @@ use crate::output::write_files;
 use crate::path::{cells_to_points, to_csv};
 use crate::render::{Scene, render_bytes};
 use crate::report::{BoundaryStats, PlanParameters, PlanReport, metric_rows};
+
+/// Reads the map at `path` in any format the command line reads (ROS yaml
+/// with its image, PGM, PNG, BMP, MovingAI `.map`); `resolution` (m/cell)
+/// places an image read without a yaml (default 1.0).
+///
+/// # Errors
+/// A resolution that is not positive or above 1000 m/cell, naming
+/// `--resolution`; an unreadable or malformed map, naming the file
+/// ([`oxcover_grid::Error`]).
+pub fn load_map(path: &Path, resolution: Option<f64>) -> Result<OccupancyGrid> {
+    let mut options = ReadOptions::default();
+    if let Some(r) = resolution {
+        let r = oxcover_grid::error::positive("--resolution", r)?;
+        if r > oxcover_grid::io::MAX_RESOLUTION {
+            return Err(Error::BadParameter {
+                name: "--resolution",
+                value: r.to_string(),
+                expected: "at most 1000 (metres per pixel)".into(),
+            });
+        }
+        options = options.resolution(r);
+    }
+    Ok(read_map(path, &options)?)
+}
 
 /// A registered planner, as `oxcover planners` lists it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -629,6 +654,30 @@ pub struct Outputs<'a> {
     pub report: Option<&'a Path>,
 }
 
+/// The picture of a plan of `request` on `map` (named `map_name`), as
+/// `plan --svg/--png` draws it: the map, the covered cells, the path and a
+/// legend of its metrics.
+#[must_use]
+pub fn plan_scene<'a>(
+    map: &'a OccupancyGrid,
+    map_name: &str,
+    request: &PlanRequest,
+    outcome: &'a PlanOutcome,
+) -> Scene<'a> {
+    let ev = &outcome.evaluation;
+    Scene {
+        map,
+        path: &outcome.points,
+        planned: None,
+        covered: Some(&ev.covered),
+        coverable: Some(&ev.problem.coverable),
+        title: format!("{} - {}", short_name(map_name), request.planner.name()),
+        overlay: None,
+        regions: None,
+        rows: metric_rows(&ev.metrics),
+    }
+}
+
 /// Writes the CSV, pictures and report of a plan of `request` on `map`
 /// (named `map_name`), all of them or none ([`crate::output::write_files`]);
 /// returns the files written.
@@ -647,19 +696,7 @@ pub fn write_outputs(
     if let Some(p) = out.csv {
         files.push((p.to_path_buf(), to_csv(&outcome.points).into_bytes()));
     }
-    let ev = &outcome.evaluation;
-    let title = format!("{} - {}", short_name(map_name), request.planner.name());
-    let scene = Scene {
-        map,
-        path: &outcome.points,
-        planned: None,
-        covered: Some(&ev.covered),
-        coverable: Some(&ev.problem.coverable),
-        title,
-        overlay: None,
-        regions: None,
-        rows: metric_rows(&ev.metrics),
-    };
+    let scene = plan_scene(map, map_name, request, outcome);
     for p in [out.svg, out.png].into_iter().flatten() {
         files.push((p.to_path_buf(), render_bytes(&scene, p)?));
     }

@@ -46,9 +46,6 @@ pub(crate) struct SimulateArgs {
     pub(crate) odometry_noise: f64,
 }
 
-/// The bundled robot description (`fixtures/robots/floor_cleaner.ron`).
-pub(crate) const FLOOR_CLEANER: &str = include_str!("../../assets/floor_cleaner.ron");
-
 pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
     use oxcover::closed_loop::{ClosedLoop, ControllerKind, execute, to_csv};
     let p = &a.plan;
@@ -64,7 +61,7 @@ pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
             path: f.clone(),
             source: e,
         })?,
-        None => FLOOR_CLEANER.to_string(),
+        None => oxcover::closed_loop::FLOOR_CLEANER.to_string(),
     };
     let spec =
         oxcover::robot::RobotSpec::from_ron(&spec_text).map_err(|e| Error::BadParameter {
