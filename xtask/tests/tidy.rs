@@ -78,7 +78,7 @@ fn rank(name: &str) -> Option<u32> {
         "oxcover-robot" | "oxcover-vision" | "oxcover-world" => 3,
         "oxcover-planners" => 4,
         "oxcover" => 5,
-        "xtask" => 6,
+        "xtask" | "oxcover-py" => 6,
         _ => return None,
     })
 }
@@ -99,10 +99,23 @@ fn dependencies_point_one_way_and_lints_are_shared() {
             .and_then(|l| l.strip_suffix('"'))
             .expect("package name");
         let me = rank(name).unwrap_or_else(|| panic!("{name}: add it to the rank table"));
-        assert!(
-            text.contains("[lints]\nworkspace = true"),
-            "{name}: use the workspace lints"
-        );
+        if name == "oxcover-py" {
+            // PyO3's macros expand to `unsafe` blocks, which the workspace's
+            // `forbid` refuses: the bindings deny unsafe code of their own
+            // and keep the other workspace lints.
+            for lint in [
+                "unsafe_code = \"deny\"",
+                "missing_docs = \"warn\"",
+                "unwrap_used = \"warn\"",
+            ] {
+                assert!(text.contains(lint), "{name}: keep `{lint}`");
+            }
+        } else {
+            assert!(
+                text.contains("[lints]\nworkspace = true"),
+                "{name}: use the workspace lints"
+            );
+        }
         let deps = text.split("[dependencies]").nth(1).unwrap_or("");
         let deps = deps.split("\n[").next().unwrap_or("");
         for line in deps.lines() {
@@ -112,6 +125,25 @@ fn dependencies_point_one_way_and_lints_are_shared() {
             }
         }
     }
+}
+
+#[test]
+fn ci_builds_and_tests_the_python_package_as_the_readme_installs_it() {
+    let readme = std::fs::read_to_string(root().join("README.md")).expect("README");
+    let ci = std::fs::read_to_string(root().join(".ci/run")).expect(".ci/run");
+    let install = "pip install ./crates/oxcover-py";
+    assert!(
+        readme.contains(install),
+        "the README installs with `{install}`"
+    );
+    assert!(
+        ci.contains("pip install --quiet --disable-pip-version-check ./crates/oxcover-py"),
+        ".ci/run must install the package as the README does"
+    );
+    assert!(
+        ci.contains("-m pytest -q crates/oxcover-py/tests"),
+        ".ci/run must run pytest"
+    );
 }
 
 #[test]

@@ -4,15 +4,15 @@
 //! ./crates/oxcover-py`): the library's one plan pipeline and its
 //! companions, with numpy arrays in and out.
 //!
-//! - [`map`]: `load_map` (every format the command line reads) and
+//! - `map`: `load_map` (every format the command line reads) and
 //!   `Map.from_array` (a bool free mask, or occupancy values in the ROS
 //!   `nav_msgs/OccupancyGrid` convention), `Map.to_array`.
-//! - [`plan`]: `plan` (the same pipeline and the same path as `oxcover plan`),
+//! - `plan`: `plan` (the same pipeline and the same path as `oxcover plan`),
 //!   the `Plan` it returns (path as an N×2 array, metrics, CSV, pictures,
 //!   files written whole or not at all), `evaluate`, `planners`.
-//! - [`segment`]: `segment`, rooms as a label array and the doors between them.
-//! - [`simulate`]: `simulate`, a plan executed in closed loop.
-//! - [`explore`]: `explore`, the sensor-based planner on a polygonal world.
+//! - `segment`: `segment`, rooms as a label array and the doors between them.
+//! - `simulate`: `simulate`, a plan executed in closed loop.
+//! - `explore`: `explore`, the sensor-based planner on a polygonal world.
 //!
 //! Errors are Python exceptions carrying the command line's one-line message:
 //! `OSError` for files that cannot be read or written, `ValueError` for bad
