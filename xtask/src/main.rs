@@ -110,6 +110,10 @@ enum Task {
         #[arg(long)]
         summary: Option<PathBuf>,
     },
+    /// Run the job array of docs/sweeps.md on a real single-node Slurm started
+    /// here (needs root; installs slurm and munge with apt-get), merge, and
+    /// check against the same sweep in one process (xtask/scripts/slurm-check.sh).
+    SlurmCheck,
     /// Merge sweep shards into the summary a single run gives.
     Merge {
         /// Shard files (JSON lines).
@@ -169,5 +173,12 @@ fn main() -> anyhow::Result<()> {
             )
         }
         Task::Merge { files, out } => xtask::sweep::merge_cli(&files, out.as_deref()),
+        Task::SlurmCheck => {
+            let script =
+                std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/slurm-check.sh");
+            let status = std::process::Command::new("bash").arg(&script).status()?;
+            anyhow::ensure!(status.success(), "{} failed ({status})", script.display());
+            Ok(())
+        }
     }
 }

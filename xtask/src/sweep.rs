@@ -8,7 +8,9 @@
 //! so the output is byte-identical whatever the thread count (tested).
 //! `--shard I/N` runs the maps with `i % N == I`, so a sweep too big for one
 //! machine runs as a job array; `merge` combines the shards' lines into the
-//! same summary a single run gives (sums are taken in map order).
+//! same summary a single run gives (sums are taken in map order). Every file
+//! starts with a [`ShardHeader`], so `merge` refuses a missing, repeated or
+//! truncated shard by name instead of summarising fewer maps.
 
 use std::collections::BTreeMap;
 use std::fmt;
@@ -127,6 +129,37 @@ pub struct MapRecord {
     pub results: BTreeMap<String, PlannerRecord>,
 }
 
+/// The first line of every file `sweep` writes: the sweep, which shard of
+/// it the file holds and how many maps that shard has. `merge` checks the
+/// files against their headers, so a missing or truncated shard is an error
+/// naming it, never a silently smaller summary.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ShardHeader {
+    /// The sweep's parameters.
+    pub sweep: SweepSpec,
+    /// `[index, count]` of this shard.
+    pub shard: [usize; 2],
+    /// Maps of this shard (`i % count == index`).
+    pub maps: usize,
+}
+
+impl ShardHeader {
+    /// The header of `shard` of `spec`.
+    #[must_use]
+    pub fn new(spec: &SweepSpec, shard: Shard) -> Self {
+        Self {
+            sweep: spec.clone(),
+            shard: [shard.index, shard.count],
+            maps: shard_maps(spec.count, shard).count(),
+        }
+    }
+}
+
+/// The maps of `shard` in a sweep of `count` maps.
+fn shard_maps(count: usize, shard: Shard) -> impl Iterator<Item = usize> {
+    (0..count).filter(move |i| i % shard.count == shard.index)
+}
+
 /// Generates map `i` of a sweep.
 #[must_use]
 pub fn sweep_map(spec: &SweepSpec, i: usize) -> OccupancyGrid {
@@ -191,9 +224,7 @@ pub fn run_map(spec: &SweepSpec, i: usize) -> MapRecord {
 /// Runs the maps of `shard` in parallel; records in map order.
 #[must_use]
 pub fn run(spec: &SweepSpec, shard: Shard) -> Vec<MapRecord> {
-    let maps: Vec<usize> = (0..spec.count)
-        .filter(|i| i % shard.count == shard.index)
-        .collect();
+    let maps: Vec<usize> = shard_maps(spec.count, shard).collect();
     let bar = crate::progress(maps.len() as u64, "sweep");
     let out = maps
         .par_iter()
@@ -300,6 +331,18 @@ pub fn to_lines(records: &[MapRecord]) -> anyhow::Result<String> {
     Ok(s)
 }
 
+/// The file of `shard` of `spec`: its [`ShardHeader`], then the records'
+/// lines.
+///
+/// # Errors
+/// Serialisation failures (none expected).
+pub fn shard_file(spec: &SweepSpec, shard: Shard, records: &[MapRecord]) -> anyhow::Result<String> {
+    let mut s = serde_json::to_string(&ShardHeader::new(spec, shard))?;
+    s.push('\n');
+    s += &to_lines(records)?;
+    Ok(s)
+}
+
 /// The `sweep` command.
 ///
 /// # Errors
@@ -314,43 +357,120 @@ pub fn cli(
         oxcover::planners::find(p)?;
     }
     let records = run(spec, shard);
-    let lines = to_lines(&records)?;
+    let lines = shard_file(spec, shard, &records)?;
+    // Whole or absent: a task killed while writing leaves no partial shard.
+    let mut files = Vec::new();
     match out {
-        Some(p) => std::fs::write(p, &lines)?,
+        Some(p) => files.push((p.to_path_buf(), lines.into_bytes())),
         None => std::io::stdout().write_all(lines.as_bytes())?,
     }
     if let Some(p) = summary {
-        std::fs::write(
-            p,
-            serde_json::to_string_pretty(&summarise(&records))? + "\n",
-        )?;
+        let text = serde_json::to_string_pretty(&summarise(&records))? + "\n";
+        files.push((p.to_path_buf(), text.into_bytes()));
     }
+    oxcover::output::write_files(files)?;
     eprintln!("sweep: {} maps of shard {shard}", records.len());
     Ok(())
 }
 
-/// Reads JSON-lines files of records.
+/// Reads the files of a sweep's shards (as `sweep --out` writes them) and
+/// checks that they are the whole sweep: every file starts with a
+/// [`ShardHeader`] of the same sweep and shard count, holds exactly the maps
+/// of its shard, and every shard is there exactly once.
 ///
 /// # Errors
-/// Unreadable files or malformed lines (named with file and line).
+/// Unreadable files, malformed lines (named with file and line), a file
+/// without a header, files of different sweeps, a shard twice, a shard
+/// missing or holding fewer or other maps than its header says (each named).
 pub fn read_records(files: &[PathBuf]) -> anyhow::Result<Vec<MapRecord>> {
     let mut all = Vec::new();
+    let mut first: Option<(ShardHeader, &Path)> = None;
+    let mut seen: BTreeMap<usize, &Path> = BTreeMap::new();
     for f in files {
         let file = std::fs::File::open(f).map_err(|e| anyhow::anyhow!("{}: {e}", f.display()))?;
+        let mut header: Option<ShardHeader> = None;
+        let mut records = Vec::new();
         for (n, line) in std::io::BufReader::new(file).lines().enumerate() {
-            let line = line?;
+            let line = line.map_err(|e| anyhow::anyhow!("{}: {e}", f.display()))?;
             if line.trim().is_empty() {
+                continue;
+            }
+            if header.is_none() {
+                let h: ShardHeader = serde_json::from_str(&line).map_err(|e| {
+                    anyhow::anyhow!(
+                        "{}: line {}: not a shard header ({e}); files of `cargo xtask sweep` start with one",
+                        f.display(),
+                        n + 1
+                    )
+                })?;
+                header = Some(h);
                 continue;
             }
             let r: MapRecord = serde_json::from_str(&line)
                 .map_err(|e| anyhow::anyhow!("{}: line {}: {e}", f.display(), n + 1))?;
-            all.push(r);
+            records.push(r);
         }
+        let Some(h) = header else {
+            anyhow::bail!("{}: empty, not a shard of a sweep", f.display());
+        };
+        let [index, count] = h.shard;
+        let shard = Shard { index, count };
+        if count == 0 || index >= count {
+            anyhow::bail!("{}: shard {index}/{count} is not a shard", f.display());
+        }
+        match &first {
+            None => first = Some((h.clone(), f.as_path())),
+            Some((h0, f0)) if h0.sweep != h.sweep || h0.shard[1] != count => anyhow::bail!(
+                "{} and {} are shards of different sweeps (or shard counts)",
+                f0.display(),
+                f.display()
+            ),
+            Some(_) => {}
+        }
+        if let Some(other) = seen.insert(index, f.as_path()) {
+            anyhow::bail!(
+                "shard {shard} appears twice: in {} and in {}",
+                other.display(),
+                f.display()
+            );
+        }
+        let expected: Vec<usize> = shard_maps(h.sweep.count, shard).collect();
+        let got: Vec<usize> = records.iter().map(|r| r.map).collect();
+        if got != expected {
+            anyhow::bail!(
+                "{}: shard {shard} holds {} of its {} maps{}; run it again",
+                f.display(),
+                got.len(),
+                expected.len(),
+                if got.len() == expected.len() {
+                    " but not the right ones"
+                } else {
+                    ""
+                }
+            );
+        }
+        all.extend(records);
+    }
+    let Some((h, _)) = first else {
+        anyhow::bail!("no shard files given");
+    };
+    let count = h.shard[1];
+    let missing: Vec<String> = (0..count)
+        .filter(|i| !seen.contains_key(i))
+        .map(|i| format!("{i}/{count}"))
+        .collect();
+    if !missing.is_empty() {
+        let (s, verb, pronoun) = if missing.len() > 1 {
+            ("s", "are", "them")
+        } else {
+            ("", "is", "it")
+        };
+        anyhow::bail!(
+            "shard{s} {} of the sweep {verb} missing: no file given holds {pronoun}",
+            missing.join(", ")
+        );
     }
     all.sort_by_key(|r| r.map);
-    if let Some(w) = all.windows(2).find(|w| w[0].map == w[1].map) {
-        anyhow::bail!("map {} appears in more than one shard", w[0].map);
-    }
     Ok(all)
 }
 
@@ -362,7 +482,9 @@ pub fn merge_cli(files: &[PathBuf], out: Option<&Path>) -> anyhow::Result<()> {
     let records = read_records(files)?;
     let text = serde_json::to_string_pretty(&summarise(&records))? + "\n";
     match out {
-        Some(p) => std::fs::write(p, text)?,
+        Some(p) => {
+            oxcover::output::write_files(vec![(p.to_path_buf(), text.into_bytes())])?;
+        }
         None => std::io::stdout().write_all(text.as_bytes())?,
     }
     Ok(())

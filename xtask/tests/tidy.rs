@@ -144,6 +144,11 @@ fn ci_builds_and_tests_the_python_package_as_the_readme_installs_it() {
         ci.contains("-m pytest -q crates/oxcover-py/tests"),
         ".ci/run must run pytest"
     );
+    let example = "crates/oxcover-py/examples/plot_plan.py";
+    assert!(
+        readme.contains(&format!("python {example}")) && ci.contains(example),
+        ".ci/run must run the README's example script"
+    );
 }
 
 #[test]
