@@ -34,7 +34,7 @@ command -v apt-get >/dev/null || die "needs apt-get (Debian or Ubuntu) to instal
 
 say "installing slurmctld, slurmd, slurm-client, munge"
 DEBIAN_FRONTEND=noninteractive apt-get install -y -q slurmctld slurmd slurm-client munge >/dev/null
-say "$(sbatch --version)"
+say "slurm $(dpkg-query -W -f='${Version}' slurmctld), munge $(dpkg-query -W -f='${Version}' munge)"
 
 # munge: the key the package made, the daemon as its own user.
 [ -s /etc/munge/munge.key ] || mungekey --create
@@ -184,15 +184,16 @@ done
 [ "$st" = RUNNING ] || die "task ${KJOB}_2 never ran (state '$st')"
 sleep 1
 scancel --signal=KILL --full "${KJOB}_2"
-say "sent SIGKILL to task ${KJOB}_2"
+say "scancel --signal=KILL --full ${KJOB}_2, one second into its sweep"
 wait_for "$KJOB" 1200
 tasks "$KJOB"
 [ ! -e "$WORK/killed/sweep-2.jsonl" ] || die "the killed task left a shard file"
 set +e
-merge_out="$(cargo xtask merge "$WORK"/killed/sweep-*.jsonl --out "$WORK/killed/summary.json" 2>&1)"
+ls -a "$WORK/killed" | sed 's/^/  killed run folder: /'
+merge_out="$(RUST_BACKTRACE=0 cargo xtask merge "$WORK"/killed/sweep-*.jsonl --out "$WORK/killed/summary.json" 2>&1)"
 merge_status=$?
 set -e
-say "merge of the killed run: exit $merge_status: $(printf '%s' "$merge_out" | tail -1)"
+say "merge of the killed run: exit $merge_status: $(printf '%s' "$merge_out" | grep '^Error' || true)"
 [ "$merge_status" != 0 ] || die "the merge accepted a sweep with a killed task"
 printf '%s' "$merge_out" | grep -q "shard 2/$SHARDS of the sweep is missing" || die "the merge did not name shard 2"
 [ ! -e "$WORK/killed/summary.json" ] || die "the refused merge wrote a summary"
