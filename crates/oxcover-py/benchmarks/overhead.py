@@ -40,16 +40,18 @@ def main() -> None:
         sys.exit(f"{a.map}: not found (the shared maps are not part of the repository)")
     m = oxcover.load_map(a.map)
     kwargs = {"robot_radius": a.radius, "tool_radius": a.radius}
-    cli_ms, py_call_ms, py_plan_ms = [], [], []
+    cli_ms, cli_wall_ms, py_call_ms, py_plan_ms = [], [], [], []
     same = True
     with tempfile.TemporaryDirectory() as tmp:
         report, csv = pathlib.Path(tmp) / "r.json", pathlib.Path(tmp) / "p.csv"
         for _ in range(a.runs):
+            t0 = time.perf_counter()
             subprocess.run(
                 [a.bin, "plan", a.map, "--planner", a.planner, "--robot-radius", str(a.radius),
                  "--tool-radius", str(a.radius), "--report", str(report), "--out", str(csv)],
                 check=True, capture_output=True,
             )
+            cli_wall_ms.append((time.perf_counter() - t0) * 1e3)
             cli_ms.append(json.loads(report.read_text())["plan_ms"])
             t0 = time.perf_counter()
             p = oxcover.plan(m, a.planner, **kwargs)
@@ -65,7 +67,8 @@ def main() -> None:
     print("|---|---:|---:|---:|")
     for name, xs in [("CLI `plan_ms` (report)", cli_ms),
                      ("Python `oxcover.plan(...)` wall time", py_call_ms),
-                     ("Python `Plan.plan_ms`", py_plan_ms)]:
+                     ("Python `Plan.plan_ms`", py_plan_ms),
+                     ("CLI process wall time (read map, plan, score, write)", cli_wall_ms)]:
         print(f"| {name} | {med(xs):.1f} | {min(xs):.1f} | {max(xs):.1f} |")
     print()
     print(f"Python call / CLI plan_ms (medians): {ratio:.3f} "
