@@ -128,9 +128,13 @@ pub(crate) struct Plan {
 }
 
 impl Plan {
-    fn picture(&self, extension: &str) -> PyResult<Vec<u8>> {
-        let scene = plan_scene(&self.map, &self.map_name, &self.request, &self.outcome);
-        render_bytes(&scene, Path::new(&format!("plan.{extension}"))).map_err(|e| error(&e))
+    /// The plan's picture in the format of `extension`, drawn with the GIL
+    /// released.
+    fn picture(&self, py: Python<'_>, extension: &str) -> PyResult<Vec<u8>> {
+        detached(py, || {
+            let scene = plan_scene(&self.map, &self.map_name, &self.request, &self.outcome);
+            render_bytes(&scene, Path::new(&format!("plan.{extension}")))
+        })
     }
 }
 
@@ -193,13 +197,13 @@ impl Plan {
     /// The picture `oxcover plan --png` draws (map, covered cells, path,
     /// metrics legend), as PNG bytes.
     fn to_png<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
-        let bytes = py.detach(|| self.picture("png"))?;
+        let bytes = self.picture(py, "png")?;
         Ok(PyBytes::new(py, &bytes))
     }
 
     /// The picture as SVG text.
     fn to_svg(&self, py: Python<'_>) -> PyResult<String> {
-        let bytes = py.detach(|| self.picture("svg"))?;
+        let bytes = self.picture(py, "svg")?;
         String::from_utf8(bytes).map_err(|e| PyValueError::new_err(e.to_string()))
     }
 
