@@ -141,26 +141,15 @@ def segment(
     """Rooms: `labels` (uint32 array) and `oxcover segment`'s JSON keys."""
 
 def simulate(
-    map: Map,
-    planner: str,
+    plan: Plan,
     *,
-    robot_radius: float = 0.0,
-    tool_radius: Optional[float] = None,
-    start: Optional[Tuple[float, float]] = None,
-    seed: int = 0,
-    boundary_pass: bool = True,
-    rooms: bool = True,
-    speed: float = 0.3,
-    turn_rate: float = 0.52,
-    sweep_angle: Optional[float] = None,
-    memory_limit: Union[str, int, None] = "auto",
     robot_spec: Optional[PathLike] = None,
     controller: Literal["klancar", "kanayama"] = "klancar",
     dt: float = 0.02,
     odometry_noise: float = 0.0,
 ) -> dict[str, Any]:
-    """A plan executed in closed loop: `samples` (N×7), `columns`,
-    `planned`, `metrics`, `report`, `warning`."""
+    """A plan executed in closed loop: `samples` (N×7, read-only),
+    `columns`, `metrics`, `report`, `warning`."""
 
 def explore(
     world: PathLike,

@@ -11,7 +11,7 @@
 //!   the `Plan` it returns (path as an N×2 array, metrics, CSV, pictures,
 //!   files written whole or not at all), `evaluate`, `planners`.
 //! - `segment`: `segment`, rooms as a label array and the doors between them.
-//! - `simulate`: `simulate`, a plan executed in closed loop.
+//! - `simulate`: `simulate`, a `Plan` executed in closed loop.
 //! - `explore`: `explore`, the sensor-based planner on a polygonal world.
 //!
 //! Errors are Python exceptions carrying the command line's one-line message:

@@ -78,9 +78,9 @@ pub(crate) fn time_model(speed: f64, turn_rate: f64) -> PyResult<TimeModel> {
     TimeModel::new(speed, turn_rate).map_err(|e| error(&e.into()))
 }
 
-/// The plan request the arguments of `plan` (and `simulate`) describe.
+/// The plan request the arguments of `plan` describe.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn request(
+fn request(
     map: &Map,
     planner_name: &str,
     robot_radius: f64,
@@ -120,10 +120,10 @@ pub(crate) fn request(
 /// file `oxcover plan --out` writes for the same request.
 #[pyclass(frozen, module = "oxcover")]
 pub(crate) struct Plan {
-    map: Arc<OccupancyGrid>,
-    map_name: String,
-    request: PlanRequest,
-    outcome: PlanOutcome,
+    pub(crate) map: Arc<OccupancyGrid>,
+    pub(crate) map_name: String,
+    pub(crate) request: PlanRequest,
+    pub(crate) outcome: PlanOutcome,
     path: Py<PyArray2<f64>>,
 }
 

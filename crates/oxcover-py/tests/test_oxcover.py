@@ -147,13 +147,17 @@ def test_simulate_matches_the_command_line(cli, tmp_path):
                "--odometry-noise", "0.01", "--seed", "3", "--out", out, *flags(ROBOT))
     assert done.returncode == 0, done.stderr
     m = oxcover.load_map("fixtures/maps/lee2011/living.yaml")
-    run = oxcover.simulate(m, "boustrophedon", odometry_noise=0.01, seed=3, **ROBOT)
+    p = oxcover.plan(m, "boustrophedon", seed=3, **ROBOT)
+    run = oxcover.simulate(p, odometry_noise=0.01)
     rows = np.loadtxt(out, delimiter=",", skiprows=1)
     assert out.read_text().splitlines()[0].split(",") == run["columns"]
     assert np.array_equal(run["samples"], rows)
     assert run["warning"] is None
     assert run["metrics"]["coverage"] > 0.9
-    assert np.array_equal(run["planned"], oxcover.plan(m, "boustrophedon", **ROBOT).path)
+    assert not run["samples"].flags.writeable
+    # The plan's seed drives the noise, as --seed does on the command line.
+    other = oxcover.simulate(oxcover.plan(m, "boustrophedon", seed=4, **ROBOT), odometry_noise=0.01)
+    assert not np.array_equal(other["samples"], run["samples"])
     assert run["report"]["planner"] == "boustrophedon"
 
 
@@ -289,8 +293,12 @@ def test_path_array_is_read_only_and_owned():
          lambda: oxcover.segment(oxcover.load_map("fixtures/maps/lee2011/living.yaml"),
                                  door_width=-1), ValueError),
         (["simulate", "fixtures/maps/lee2011/living.yaml", "--planner", "dtc", "--dt", "5"],
-         lambda: oxcover.simulate(oxcover.load_map("fixtures/maps/lee2011/living.yaml"), "dtc",
-                                  dt=5), ValueError),
+         lambda: oxcover.simulate(oxcover.plan(oxcover.load_map("fixtures/maps/lee2011/living.yaml"),
+                                               "dtc"), dt=5), ValueError),
+        (["simulate", "fixtures/maps/lee2011/living.yaml", "--planner", "dtc", "--robot-spec",
+          "nope.ron"],
+         lambda: oxcover.simulate(oxcover.plan(oxcover.load_map("fixtures/maps/lee2011/living.yaml"),
+                                               "dtc"), robot_spec="nope.ron"), OSError),
         (["explore", "nope.ron"], lambda: oxcover.explore("nope.ron"), OSError),
     ],
 )
