@@ -311,6 +311,17 @@ pub struct Built {
 /// Calibration, planning, files.
 pub fn run() -> anyhow::Result<()> {
     let out = dir()?;
+    let page = generate(Some(&out))?;
+    std::fs::write(out.join("pavlicek2002-camera.md"), page)?;
+    println!("wrote docs/reproduction/pavlicek2002-camera.md");
+    Ok(())
+}
+
+/// The page (and, into `figures`, its pictures): the experiment run whole.
+///
+/// # Errors
+/// Calibration, planning, files.
+pub fn generate(figures: Option<&Path>) -> anyhow::Result<String> {
     let truth_cam = true_camera();
     let cal = calibrate(&truth_cam)?;
     let profile = learn(&truth_cam)?;
@@ -382,12 +393,14 @@ pub fn run() -> anyhow::Result<()> {
             };
             plans.push((name.to_string(), coverage, collisions, length));
         }
-        let name = format!("{mode:?}_{fusion:?}").to_lowercase();
-        picture(
-            &map,
-            &format!("built map ({mode:?} visibility, {fusion:?})"),
-            &out.join(format!("pavlicek2002_camera_map_{name}.png")),
-        )?;
+        if let Some(out) = figures {
+            let name = format!("{mode:?}_{fusion:?}").to_lowercase();
+            picture(
+                &map,
+                &format!("built map ({mode:?} visibility, {fusion:?})"),
+                &out.join(format!("pavlicek2002_camera_map_{name}.png")),
+            )?;
+        }
         built.push(Built {
             mode,
             fusion,
@@ -398,28 +411,27 @@ pub fn run() -> anyhow::Result<()> {
         });
     }
     // Figures 4-6: one camera image, it on the floor, its occupancy.
-    let k = poses.len() / 3;
-    let img = RgbImage::from(&images[k]);
-    img.write_png(&out.join("pavlicek2002_camera_image.png"))?;
-    floor_picture(
-        &truth,
-        &cal.camera,
-        &img,
-        poses[k],
-        range,
-        &out.join("pavlicek2002_camera_floor.png"),
-    )?;
-    let single = readings(truth.frame(), &cal.camera, &profile, &img, poses[k], range);
-    grey_picture(&single, &out.join("pavlicek2002_camera_single.png"))?;
-    picture(
-        &truth,
-        "ground truth (office)",
-        &out.join("pavlicek2002_camera_truth.png"),
-    )?;
-    let page = page(&truth_cam, &cal, &profile, poses.len(), &built);
-    std::fs::write(out.join("pavlicek2002-camera.md"), page)?;
-    println!("wrote docs/reproduction/pavlicek2002-camera.md");
-    Ok(())
+    if let Some(out) = figures {
+        let k = poses.len() / 3;
+        let img = RgbImage::from(&images[k]);
+        img.write_png(&out.join("pavlicek2002_camera_image.png"))?;
+        floor_picture(
+            &truth,
+            &cal.camera,
+            &img,
+            poses[k],
+            range,
+            &out.join("pavlicek2002_camera_floor.png"),
+        )?;
+        let single = readings(truth.frame(), &cal.camera, &profile, &img, poses[k], range);
+        grey_picture(&single, &out.join("pavlicek2002_camera_single.png"))?;
+        picture(
+            &truth,
+            "ground truth (office)",
+            &out.join("pavlicek2002_camera_truth.png"),
+        )?;
+    }
+    Ok(page(&truth_cam, &cal, &profile, poses.len(), &built))
 }
 
 fn picture(map: &OccupancyGrid, title: &str, file: &Path) -> anyhow::Result<()> {

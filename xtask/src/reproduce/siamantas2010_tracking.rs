@@ -82,8 +82,21 @@ pub fn runs() -> anyhow::Result<(OccupancyGrid, Vec<Point>, Vec<Run>)> {
 /// # Errors
 /// Failing runs, file writes.
 pub fn run() -> anyhow::Result<()> {
-    let (map, reference, runs) = runs()?;
     let out = dir()?;
+    let md = generate(Some(&out))?;
+    let file = out.join("siamantas2010_tracking.md");
+    std::fs::write(&file, md)?;
+    println!("wrote {}", file.display());
+    Ok(())
+}
+
+/// The page (and, into `figures`, its pictures and chart): the runs made
+/// whole.
+///
+/// # Errors
+/// Failing runs, file writes.
+pub fn generate(figures: Option<&std::path::Path>) -> anyhow::Result<String> {
+    let (map, reference, runs) = runs()?;
     let name = "siamantas2010_tracking";
     let mut md = String::from("# Siamantas et al. 2010, Fig. 3c: tracking the Grid_Cover path\n\n");
     md += "Command: `cargo xtask reproduce siamantas2010-tracking`. Grid: map 0 of `siamantas2010` (8 × 8, 15 obstacles) with 0.5 m cells. Reference: the Grid_Cover path through the cell centres, timed at 0.3 m/s, 0.5 m/s², 0.52 rad/s (3 rad/s² in turns); corners stop and turn in place. Robot: the bundled floor cleaner's drive (`fixtures/robots/floor_cleaner.ron`: wheel base 0.235 m, wheel speed ≤ 0.5 m/s, wheel acceleration ≤ 1 m/s²), disc radius 0.17 m, tool covering one 0.5 m cell. Controllers at 50 Hz: Klancar et al. (ζ = 0.7, g = 40) and Kanayama (K = 1, 4, 4). The seed reports only that the robot \"followed the reference path with acceptable accuracy\" (no figure values), so there is no number to compare against.\n\n";
@@ -103,6 +116,25 @@ pub fn run() -> anyhow::Result<()> {
             last.1
         );
     }
+    if let Some(out) = figures {
+        figures_of(&map, &reference, &runs, out)?;
+    }
+    let _ = write!(
+        md,
+        "\n![reference vs executed]({name}.png)\n\n![reference vs executed with odometry noise]({name}_noise.png)\n\n![tracking error over time]({name}_error.svg)\n\n"
+    );
+    md += DISCUSSION;
+    Ok(md)
+}
+
+/// The pictures of the runs and the error chart, into `out`.
+fn figures_of(
+    map: &OccupancyGrid,
+    reference: &[Point],
+    runs: &[Run],
+    out: &std::path::Path,
+) -> anyhow::Result<()> {
+    let name = "siamantas2010_tracking";
     // Pictures: reference (orange) under the executed path, without and with noise.
     for (i, suffix) in [(0, ""), (2, "_noise")] {
         let r = &runs[i];
@@ -113,9 +145,9 @@ pub fn run() -> anyhow::Result<()> {
             .collect();
         render_to_file(
             &Scene {
-                map: &map,
+                map,
                 path: &executed,
-                planned: Some(&reference),
+                planned: Some(reference),
                 covered: Some(&r.evaluation.covered),
                 coverable: Some(&r.evaluation.problem.coverable),
                 title: format!("Grid_Cover path (orange), {} (blue)", RUNS[i].0),
@@ -144,7 +176,7 @@ pub fn run() -> anyhow::Result<()> {
         bands: Vec::new(),
         series: RUNS
             .iter()
-            .zip(&runs)
+            .zip(runs)
             .enumerate()
             .map(|(i, ((label, _, _), r))| Series {
                 name: (*label).to_string(),
@@ -160,12 +192,8 @@ pub fn run() -> anyhow::Result<()> {
             .collect(),
     };
     std::fs::write(out.join(format!("{name}_error.svg")), chart.svg())?;
-    let _ = write!(
-        md,
-        "\n![reference vs executed]({name}.png)\n\n![reference vs executed with odometry noise]({name}_noise.png)\n\n![tracking error over time]({name}_error.svg)\n\n"
-    );
-    md += "## Discussion\n\nBoth controllers track the stop-and-turn reference to within a few millimetres (table). The largest errors are at the corners, where the reference turns in place and the wheels' acceleration limit delays the robot's turn. There Klancar's controller keeps its gain `k = 2ζ√(ω_r² + g v_r²)` positive while the reference only turns (`v_r = 0`), whereas Kanayama's lateral term `v_r K_y e_y` vanishes. With odometry noise the controller steers by dead reckoning, so the true pose drifts: centimetres over this path (length in the table), which 0.5 m cells absorb (coverage and collisions in the table). The seed localised its robot with a ceiling camera, which bounds that drift; we do not model the camera.\n";
-    std::fs::write(out.join(format!("{name}.md")), md)?;
-    println!("wrote {}", out.join(format!("{name}.md")).display());
     Ok(())
 }
+
+/// The page's discussion.
+const DISCUSSION: &str = "## Discussion\n\nBoth controllers track the stop-and-turn reference to within a few millimetres (table). The largest errors are at the corners, where the reference turns in place and the wheels' acceleration limit delays the robot's turn. There Klancar's controller keeps its gain `k = 2ζ√(ω_r² + g v_r²)` positive while the reference only turns (`v_r = 0`), whereas Kanayama's lateral term `v_r K_y e_y` vanishes. With odometry noise the controller steers by dead reckoning, so the true pose drifts: centimetres over this path (length in the table), which 0.5 m cells absorb (coverage and collisions in the table). The seed localised its robot with a ceiling camera, which bounds that drift; we do not model the camera.\n";
