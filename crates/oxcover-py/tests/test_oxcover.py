@@ -57,6 +57,28 @@ def test_same_path_as_the_command_line(cli, tmp_path, map_path, planner):
     assert len(p) == rows.shape[0]
 
 
+@pytest.mark.parametrize(
+    "image, resolution",
+    [
+        ("fixtures/maps/pythonrobotics/test.png", 0.1),
+        ("fixtures/maps/lee2011/living.pgm", 0.05),
+        ("fixtures/fuzz/seeds/bmp/wall.bmp", 0.5),
+    ],
+)
+def test_plain_images_load_as_on_the_command_line(cli, tmp_path, image, resolution):
+    """PNG, PGM and BMP read without a yaml, placed by `resolution`."""
+    out = tmp_path / "cli.csv"
+    done = cli("plan", image, "--planner", "boustrophedon", "--resolution", resolution, "--out", out)
+    m = oxcover.load_map(image, resolution=resolution)
+    assert m.resolution == resolution and m.origin == (0.0, 0.0, 0.0)
+    if done.returncode != 0:
+        with pytest.raises(ValueError) as e:
+            oxcover.plan(m, "boustrophedon")
+        assert str(e.value) == cli_error(done)
+        return
+    assert oxcover.plan(m, "boustrophedon").to_csv() == out.read_text()
+
+
 def test_an_exact_search_runs_the_same_from_python(cli, tmp_path):
     """`optimal` refuses the maps above at their sizes; here it plans."""
     args = {"tool_radius": 2.0}
