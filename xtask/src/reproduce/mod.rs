@@ -118,6 +118,45 @@ pub(crate) fn dir() -> anyhow::Result<std::path::PathBuf> {
     Ok(d)
 }
 
+/// Where a page's figures go: `figures`, or (for a drift test, which wants
+/// the page alone) a scratch folder removed when the guard drops.
+pub(crate) struct FigureDir {
+    path: std::path::PathBuf,
+    scratch: bool,
+}
+
+impl FigureDir {
+    pub(crate) fn new(figures: Option<&std::path::Path>, name: &str) -> anyhow::Result<Self> {
+        Ok(match figures {
+            Some(f) => Self {
+                path: f.to_path_buf(),
+                scratch: false,
+            },
+            None => {
+                let path = std::env::temp_dir()
+                    .join(format!("oxcover-{name}-figures-{}", std::process::id()));
+                std::fs::create_dir_all(&path)?;
+                Self {
+                    path,
+                    scratch: true,
+                }
+            }
+        })
+    }
+
+    pub(crate) fn join(&self, file: &str) -> std::path::PathBuf {
+        self.path.join(file)
+    }
+}
+
+impl Drop for FigureDir {
+    fn drop(&mut self) {
+        if self.scratch {
+            let _ = std::fs::remove_dir_all(&self.path);
+        }
+    }
+}
+
 /// Quantile (nearest rank, `q` in 0..=1) of sorted values.
 pub(crate) fn quantile(sorted: &[f64], q: f64) -> f64 {
     if sorted.is_empty() {

@@ -133,8 +133,21 @@ fn default(p: &dyn Planner) -> Arc<dyn Planner> {
 /// # Errors
 /// Missing maps, failing plans, file writes.
 pub fn run() -> anyhow::Result<()> {
-    let maps = crate::floor_plans()?;
     let out = dir()?;
+    let md = generate(Some(&out))?;
+    std::fs::write(out.join("pavlicek2002.md"), md)?;
+    println!("wrote {}", out.join("pavlicek2002.md").display());
+    Ok(())
+}
+
+/// The `pavlicek2002` page; its figures into `figures` (a scratch folder
+/// when `None`).
+///
+/// # Errors
+/// Missing maps, failing plans, figure writes.
+pub fn generate(figures: Option<&std::path::Path>) -> anyhow::Result<String> {
+    let maps = crate::floor_plans()?;
+    let out = super::FigureDir::new(figures, "pavlicek2002")?;
     let mut md = String::from(
         "# Pavlicek et al. 2002: boustrophedon vs border expansion\n\nCommand: `cargo xtask reproduce pavlicek2002` (release). Maps: every ROS map of `../shared/maps/ros` and every floor plan of `../shared/maps/ipa-floorplans` (0.05 m/px, contract thresholds); robot and tool radius 0.3 m; start at the first cell of the largest admissible region. `raw` is the planner's own coverage before the boundary pass; `final` includes it. Cells = decomposition cells at the chosen sweep angle; roads = border-expansion roads (levels in brackets).\n\n",
     );
@@ -310,9 +323,7 @@ pub fn run() -> anyhow::Result<()> {
     }
     md += &claims;
     md += "\n## Discussion\n\nThe paper reports no numbers, only claims: the two about motions are weighed above; the three below are tested by the other tables.\n\n- *Boustrophedon skips regions next to boundaries, border expansion traces them*: compare the `raw coverage` columns (before our boundary pass; `final` is after it). On the ipa plans border expansion's raw coverage stays near 0.99 while both sweeps stay near 0.92: lane ends stop where the robot disc meets a wall, so the strips and corners between lane ends and walls stay uncovered, which is the effect the paper describes. With the boundary pass (Pavlíček 2002's suggested \"additional run along obstacle boundaries\") every method reaches full coverage with 0 collisions.\n- *Trapezoidal makes more cells than boustrophedon*: compare the `cells / roads` column; on the rasterised plans every bend of a wall cuts a trapezoid (a second difference of a lane end above 2 cells, `oxcover_decomp::trapezoidal::BEND_CELLS`), while boustrophedon cuts only at splits and merges.\n- *Border expansion is rotation-independent, boustrophedon is not*: coverage hardly changes with rotation for any method, because our lanes and roads are laid on the rotated grid with the same spacing and the leftover pass fills what they miss. The length spread across rotations is only slightly lower for border expansion than for fixed-direction sweeps: nearest-neighbour resampling changes the walls' pixel staircases, which changes the roads (and their straightening) as well. The claim reproduces weakly on grid maps; on the paper's polygonal maps the offsets are exact and it would hold more strongly.\n\nChoices the paper leaves open: lanes and roads are one coverage cell apart (the tool diameter rounded down to whole pixels, 0.6 m here), not the robot width; the walk over roads is depth-first over the nesting of the level regions; regions where offsets vanish are covered by visiting their remaining coverage cells.\n";
-    std::fs::write(out.join("pavlicek2002.md"), md)?;
-    println!("wrote {}", out.join("pavlicek2002.md").display());
-    Ok(())
+    Ok(md)
 }
 
 /// Runs `floorplans`: every registered planner on the ipa floor plans.
@@ -320,10 +331,23 @@ pub fn run() -> anyhow::Result<()> {
 /// # Errors
 /// Missing maps, file writes.
 pub fn run_floorplans() -> anyhow::Result<()> {
+    let out = dir()?;
+    let md = generate_floorplans(Some(&out))?;
+    std::fs::write(out.join("floorplans.md"), md)?;
+    println!("wrote {}", out.join("floorplans.md").display());
+    Ok(())
+}
+
+/// The `floorplans` page; its pictures into `figures` (a scratch folder
+/// when `None`).
+///
+/// # Errors
+/// Missing maps, picture writes.
+pub fn generate_floorplans(figures: Option<&std::path::Path>) -> anyhow::Result<String> {
     let maps = crate::floor_plans()?;
     let ipa: Vec<&(String, OccupancyGrid)> =
         maps.iter().filter(|(n, _)| n.starts_with("ipa")).collect();
-    let out = dir()?;
+    let out = super::FigureDir::new(figures, "floorplans")?;
     let mut md = String::from(
         "# Every planner on the ipa floor plans\n\nCommand: `cargo xtask reproduce floorplans` (release, rayon over maps). Robot and tool radius 0.3 m, 0.05 m/px, start at the first cell of the largest admissible region, boundary pass on. Per planner: means over the maps it accepted (`refused` counts maps beyond its size limit); `min coverage` is the worst map; `plan ms` is the whole pipeline (coverage problem, planner, boundary pass).\n\n| planner | maps | refused | min coverage | mean coverage | raw coverage | collisions | length m | turns | est_time_s | plan ms |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
     );
@@ -380,7 +404,5 @@ pub fn run_floorplans() -> anyhow::Result<()> {
             let _ = writeln!(md, "![{} on {name}]({file})\n", p.name());
         }
     }
-    std::fs::write(out.join("floorplans.md"), md)?;
-    println!("wrote {}", out.join("floorplans.md").display());
-    Ok(())
+    Ok(md)
 }

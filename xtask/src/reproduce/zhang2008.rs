@@ -167,9 +167,21 @@ pub fn run_all(cases: &[Case]) -> anyhow::Result<Vec<Result>> {
 /// # Errors
 /// Failures of a run or of writing the page.
 pub fn run() -> anyhow::Result<()> {
+    let out = dir()?;
+    let md = generate(Some(&out))?;
+    std::fs::write(out.join("zhang2008.md"), md)?;
+    println!("wrote docs/reproduction/zhang2008.md and zhang2008_simple_rooms.svg");
+    Ok(())
+}
+
+/// The page (and, into `figures`, its figure): every case run. The MovingAI
+/// rooms are among the cases only when `../shared/maps` is there.
+///
+/// # Errors
+/// Failures of a run or of drawing the figure.
+pub fn generate(figures: Option<&std::path::Path>) -> anyhow::Result<String> {
     let cases = cases();
     let results = run_all(&cases)?;
-    let out = dir()?;
     let mut md = String::from(
         "# Reproduction: Zhang & Yan 2008\n\n\
          *Robot coverage algorithm under rectangular decomposition environment*: global planning over the\n\
@@ -219,30 +231,30 @@ pub fn run() -> anyhow::Result<()> {
         .iter()
         .find(|c| c.name.starts_with("ROS simple_rooms"))
     {
-        let req = PlanRequest::new("rect-priority", case.map.resolution())?
-            .robot(case.robot)
-            .start(Start::LargestRegion)
-            .boundary_pass(false)
-            .rooms(false);
-        let o = plan(&case.map, &req)?;
-        let scene = Scene {
-            map: &case.map,
-            path: &o.points,
-            planned: None,
-            covered: Some(&o.evaluation.covered),
-            coverable: Some(&o.evaluation.problem.coverable),
-            title: "simple_rooms - rect-priority (no boundary pass)".into(),
-            overlay: None,
-            regions: None,
-            rows: metric_rows(&o.evaluation.metrics),
-        };
-        std::fs::write(out.join("zhang2008_simple_rooms.svg"), render_svg(&scene)?)?;
+        if let Some(out) = figures {
+            let req = PlanRequest::new("rect-priority", case.map.resolution())?
+                .robot(case.robot)
+                .start(Start::LargestRegion)
+                .boundary_pass(false)
+                .rooms(false);
+            let o = plan(&case.map, &req)?;
+            let scene = Scene {
+                map: &case.map,
+                path: &o.points,
+                planned: None,
+                covered: Some(&o.evaluation.covered),
+                coverable: Some(&o.evaluation.problem.coverable),
+                title: "simple_rooms - rect-priority (no boundary pass)".into(),
+                overlay: None,
+                regions: None,
+                rows: metric_rows(&o.evaluation.metrics),
+            };
+            std::fs::write(out.join("zhang2008_simple_rooms.svg"), render_svg(&scene)?)?;
+        }
         md += "\n![rect-priority on simple_rooms, without the boundary pass: missed cells in orange](zhang2008_simple_rooms.svg)\n";
     }
     md += &discussion(&results);
-    std::fs::write(out.join("zhang2008.md"), md)?;
-    println!("wrote docs/reproduction/zhang2008.md and zhang2008_simple_rooms.svg");
-    Ok(())
+    Ok(md)
 }
 
 fn discussion(results: &[Result]) -> String {
