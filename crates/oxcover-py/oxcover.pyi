@@ -40,6 +40,11 @@ class Map:
         the nav_msgs/OccupancyGrid convention (-1 unknown, 255 in uint8;
         0..100 percent). Row 0 at the origin (rows="up") or at the top
         (rows="down")."""
+    @staticmethod
+    def from_ros(
+        msg: Any, *, free_thresh: float = 0.196, occupied_thresh: float = 0.65
+    ) -> "Map":
+        """A map from a nav_msgs/msg/OccupancyGrid message (duck-typed)."""
     def to_array(self, *, rows: Rows = "up") -> npt.NDArray[np.int8]:
         """0 free, 100 occupied, -1 unknown (nav_msgs/OccupancyGrid)."""
     def free_mask(self, *, rows: Rows = "up") -> npt.NDArray[np.bool_]: ...

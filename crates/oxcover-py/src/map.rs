@@ -223,6 +223,65 @@ impl Map {
         })
     }
 
+    /// A map from a ROS `nav_msgs/msg/OccupancyGrid` message as `rclpy`
+    /// delivers it (or any object with the same fields: `info.resolution`,
+    /// `info.width`, `info.height`, `info.origin.position.x/.y`,
+    /// `info.origin.orientation.z/.w`, and `data`, a sequence of `width ×
+    /// height` values in -1..100, row 0 at the origin). The yaw is taken from
+    /// the origin's quaternion (a rotation about z). Thresholds as
+    /// `from_array`.
+    #[staticmethod]
+    #[pyo3(signature = (msg, *, free_thresh = 0.196, occupied_thresh = 0.65))]
+    fn from_ros(msg: &Bound<'_, PyAny>, free_thresh: f64, occupied_thresh: f64) -> PyResult<Self> {
+        let py = msg.py();
+        let field = |path: &str| -> PyResult<Bound<'_, PyAny>> {
+            let mut v = msg.clone();
+            for name in path.split('.') {
+                v = v.getattr(name).map_err(|_| {
+                    bad(
+                        "msg",
+                        format!("without `{path}`"),
+                        "a nav_msgs/msg/OccupancyGrid (info.resolution, info.width, info.height, info.origin, data)",
+                    )
+                })?;
+            }
+            Ok(v)
+        };
+        let width: usize = field("info.width")?.extract()?;
+        let height: usize = field("info.height")?.extract()?;
+        let resolution: f64 = field("info.resolution")?.extract()?;
+        let x: f64 = field("info.origin.position.x")?.extract()?;
+        let y: f64 = field("info.origin.position.y")?.extract()?;
+        let qz: f64 = field("info.origin.orientation.z")?.extract()?;
+        let qw: f64 = field("info.origin.orientation.w")?.extract()?;
+        let yaw = 2.0 * qz.atan2(qw);
+        let numpy = py.import("numpy")?;
+        let flat = numpy.call_method1("asarray", (field("data")?, "int64"))?;
+        let n: usize = flat.getattr("size")?.extract()?;
+        if n != width.saturating_mul(height) {
+            return Err(bad(
+                "msg.data",
+                format!("{n} values"),
+                &format!("info.width × info.height = {width} × {height} values"),
+            ));
+        }
+        let grid = flat.call_method1("reshape", ((height, width),))?;
+        let kwargs = pyo3::types::PyDict::new(py);
+        kwargs.set_item("rows", "up")?;
+        kwargs.set_item("free_thresh", free_thresh)?;
+        kwargs.set_item("occupied_thresh", occupied_thresh)?;
+        let map = py.get_type::<Map>().call_method(
+            "from_array",
+            (grid, resolution, (x, y, yaw)),
+            Some(&kwargs),
+        )?;
+        let map: PyRef<'_, Map> = map.extract()?;
+        Ok(Map {
+            grid: Arc::clone(&map.grid),
+            name: "<nav_msgs/OccupancyGrid>".into(),
+        })
+    }
+
     /// The map as an int8 array in the nav_msgs/OccupancyGrid convention:
     /// 0 free, 100 occupied, -1 unknown; rows as `from_array` takes them.
     #[pyo3(signature = (*, rows = "up"))]

@@ -218,6 +218,41 @@ def test_occupancy_grid_round_trip_plans_the_same_path():
         assert np.array_equal(oxcover.Map.from_array(arr, m.resolution, m.origin).to_array(), data)
 
 
+def occupancy_grid_msg(m, yaw):
+    """A nav_msgs/msg/OccupancyGrid as rclpy delivers it (duck-typed: no ROS
+    here): int8 data as a flat array, the origin's yaw as a quaternion."""
+    from types import SimpleNamespace as NS
+
+    x, y, _ = m.origin
+    return NS(
+        header=NS(frame_id="map"),
+        info=NS(
+            resolution=m.resolution,
+            width=m.width,
+            height=m.height,
+            origin=NS(position=NS(x=x, y=y, z=0.0),
+                      orientation=NS(x=0.0, y=0.0, z=np.sin(yaw / 2), w=np.cos(yaw / 2))),
+        ),
+        data=m.to_array().ravel().tolist(),
+    )
+
+
+def test_a_ros_occupancy_grid_message_plans_as_the_map_file(tmp_path):
+    m = oxcover.load_map("fixtures/maps/nav2/turtlebot3_world.yaml")
+    received = oxcover.Map.from_ros(occupancy_grid_msg(m, 0.0))
+    assert received.origin == m.origin and received.shape == m.shape
+    assert oxcover.plan(received, "lanes", **ROBOT).to_csv() == oxcover.plan(m, "lanes", **ROBOT).to_csv()
+    turned = oxcover.Map.from_ros(occupancy_grid_msg(m, 0.6))
+    assert turned.origin[2] == pytest.approx(0.6, abs=1e-12)
+    msg = occupancy_grid_msg(m, 0.0)
+    msg.data = msg.data[:-1]
+    with pytest.raises(ValueError, match="info.width × info.height"):
+        oxcover.Map.from_ros(msg)
+    del msg.info.resolution
+    with pytest.raises(ValueError, match="without `info.resolution`"):
+        oxcover.Map.from_ros(msg)
+
+
 def test_rows_up_is_the_ros_order_and_down_the_image_order():
     # 3 rows, 4 columns: only the bottom-left cell (row 0 up) is free.
     grid = np.full((3, 4), 100, dtype=np.int8)
