@@ -167,6 +167,7 @@ def explore(
     noise: float = 0.0,
     seed: int = 0,
     start: Optional[Tuple[float, float]] = None,
+    algorithm: Literal["cycles", "paper"] = "cycles",
 ) -> dict[str, Any]:
     """Sensor-based coverage of a polygonal world: `path`, `states`,
     `graph`, `metrics`, `report`, `map`."""

@@ -8,10 +8,10 @@ use numpy::IntoPyArray;
 use oxcover::explore::explore_world;
 use oxcover::grid::Point;
 use oxcover::world::World;
-use oxcover::world::sensor_bcd::Config;
+use oxcover::world::sensor_bcd::{Algorithm, Config};
 use pyo3::prelude::*;
 
-use crate::convert::{detached, points_array, start_point, to_dict};
+use crate::convert::{bad, detached, points_array, start_point, to_dict};
 use crate::map::Map;
 
 /// Covers the polygonal world in `world` (a RON file, see fixtures/worlds)
@@ -22,7 +22,9 @@ use crate::map::Map;
 /// apart), `margin` the distance kept from sensed boundaries beyond the body,
 /// `rays` in the sensor ring, `max_range` in metres, `noise` the range
 /// noise's standard deviation (seeded by `seed`), `start` = (x, y) (default:
-/// the world file's start).
+/// the world file's start), `algorithm` "cycles" (ours: every slab closed
+/// by a cycle, the Reeb graph from what was traced) or "paper" (Demir 2018 as
+/// published: no cycle algorithm, graph edges from the last visited node).
 ///
 /// Returns a dict: `path` (the executed N×2 waypoints), `states` (a uint8
 /// array, each waypoint's state code: 0 start, 1 motion to boundary, 2 border
@@ -30,7 +32,7 @@ use crate::map::Map;
 /// graph), `metrics` (scored on the world's raster), `report` (as `oxcover
 /// explore --report` writes it) and `map` (the world's raster as a `Map`).
 #[pyfunction]
-#[pyo3(signature = (world, *, robot_radius = 0.2, tool_radius = 0.25, margin = 0.04, rays = 180, max_range = 3.0, noise = 0.0, seed = 0, start = None))]
+#[pyo3(signature = (world, *, robot_radius = 0.2, tool_radius = 0.25, margin = 0.04, rays = 180, max_range = 3.0, noise = 0.0, seed = 0, start = None, algorithm = "cycles"))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn explore<'py>(
     py: Python<'py>,
@@ -43,9 +45,16 @@ pub(crate) fn explore<'py>(
     noise: f64,
     seed: u64,
     start: Option<(f64, f64)>,
+    algorithm: &str,
 ) -> PyResult<Bound<'py, PyAny>> {
     let start = start_point(start)?;
+    let algorithm = match algorithm {
+        "cycles" => Algorithm::Cycles,
+        "paper" => Algorithm::Paper,
+        other => return Err(bad("algorithm", other, "`cycles` or `paper`")),
+    };
     let cfg = Config {
+        algorithm,
         robot_radius,
         tool_radius,
         margin,

@@ -194,6 +194,13 @@ def test_explore_matches_the_command_line(cli, tmp_path):
     assert np.array_equal(res["states"], rows[:, 2].astype(np.uint8))
     assert res["report"]["complete"] and res["metrics"]["coverage"] > 0.99
     assert isinstance(res["map"], oxcover.Map) and res["graph"]["nodes"]
+    # The seed's own algorithm, as `--algorithm paper`.
+    done = cli("explore", world, "--algorithm", "paper", "--out", out)
+    assert done.returncode == 0, done.stderr
+    seed = oxcover.explore(world, algorithm="paper")
+    rows = np.loadtxt(out, delimiter=",", skiprows=1)
+    assert np.array_equal(seed["path"], rows[:, :2])
+    assert seed["report"]["cycles"] == 0
 
 
 # ---- numpy round trips ---------------------------------------------------

@@ -20,8 +20,9 @@
 //! - [`sensor_bcd`]: the online sensor-based planner of Demir 2018 (Acar &
 //!   Choset 2002): it covers an unknown polygonal world with range rays,
 //!   growing a boustrophedon decomposition and its Reeb graph as it goes
-//!   (`oxcover explore`). It needs a world to sense, not a grid, so it is not
-//!   a grid planner of `oxcover-planners`.
+//!   (`oxcover explore`); beside it, the seed's own algorithm as published
+//!   ([`sensor_bcd::Algorithm::Paper`]). It needs a world to sense, not a
+//!   grid, so it is not a grid planner of `oxcover-planners`.
 //!
 //! ```
 //! use oxcover_world::sensor_bcd::{Config, explore};

@@ -314,3 +314,88 @@ fn same_seed_same_run() {
     let c = explore(&g, start, &Config { seed: 12, ..cfg }).expect("explored");
     assert_ne!(a.trace, c.trace);
 }
+
+/// The seed's own algorithm (`Algorithm::Paper`) on the seed's worlds: it
+/// never touches the world, covers the worlds the seed says it covers, and
+/// leaves the pocket of Fig. 14 and the passage of Fig. 15, as the seed
+/// reports, where ours covers them; its graph is a chain (edges from the
+/// last visited node), never a loop.
+#[test]
+fn the_seeds_algorithm_shows_its_reported_failures() {
+    use oxcover::world::sensor_bcd::Algorithm;
+    let dir =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/worlds/demir2018");
+    let run = |name: &str, algorithm: Algorithm| {
+        let world = World::read(&dir.join(format!("{name}.ron"))).expect("world");
+        let cfg = Config {
+            algorithm,
+            ..Config::default()
+        };
+        let start = world.start.expect("a start");
+        let ex = explore(&WorldGeometry::new(&world), start, &cfg).expect("explores");
+        assert_eq!(ex.collisions, 0, "{name}");
+        assert!(ex.min_clearance >= cfg.robot_radius, "{name}");
+        let g = &ex.graph;
+        (
+            coverage(&world, &ex, &cfg),
+            g.nodes.len(),
+            g.edges.len(),
+            ex,
+        )
+    };
+    for name in [
+        "fig05_polygon",
+        "fig11_octagon",
+        "fig12_other_start",
+        "fig13_side_by_side",
+    ] {
+        let (cov, nodes, edges, _) = run(name, Algorithm::Paper);
+        assert!(cov > 0.95, "{name}: the seed covers it, we measure {cov}");
+        assert_eq!(edges + 1, nodes, "{name}: a chain");
+    }
+    for (name, inside) in [
+        ("fig14_concave", Point::new(5.8, 5.0)),
+        ("fig15_stacked", Point::new(5.0, 4.6)),
+    ] {
+        let (paper, nodes, edges, ex) = run(name, Algorithm::Paper);
+        let (ours, ..) = run(name, Algorithm::Cycles);
+        assert!(
+            paper < 0.93 && ours > 0.99,
+            "{name}: seed {paper}, ours {ours}"
+        );
+        assert_eq!(edges + 1, nodes, "{name}: a chain");
+        // The pocket / passage itself: the robot never comes within a tool
+        // radius of its middle.
+        let near = ex
+            .trace
+            .iter()
+            .any(|t| (t.x - inside.x).hypot(t.y - inside.y) < Config::default().tool_radius);
+        assert!(!near, "{name}: the seed's robot reached {inside:?}");
+    }
+}
+
+/// The seed's algorithm on seeded random worlds: incomplete by design, but
+/// it ends, never touches the world, never leaves its free space, and stays
+/// within the same length bound as ours.
+#[test]
+fn the_seeds_algorithm_ends_safely_on_random_worlds() {
+    use oxcover::world::sensor_bcd::Algorithm;
+    for seed in 0..10 {
+        let world = random_world(seed, &RandomWorldSpec::default());
+        let cfg = Config {
+            algorithm: Algorithm::Paper,
+            ..Config::default()
+        };
+        let start = world.start.expect("random worlds have a start");
+        let ex = explore(&WorldGeometry::new(&world), start, &cfg)
+            .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+        assert_eq!(ex.collisions, 0, "seed {seed}");
+        assert!(ex.min_clearance >= cfg.robot_radius, "seed {seed}");
+        assert!(ex.length_m <= length_bound(&world, &cfg), "seed {seed}");
+        for t in &ex.trace {
+            assert!(world.is_free(Point::new(t.x, t.y)), "seed {seed}: {t:?}");
+        }
+        let cov = coverage(&world, &ex, &cfg);
+        assert!(cov > 0.5, "seed {seed}: coverage {cov}");
+    }
+}

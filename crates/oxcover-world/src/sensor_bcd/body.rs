@@ -278,6 +278,27 @@ impl<'w> Body<'w> {
         det.fire(&mut self.probe, self.world, self.p, angle)
     }
 
+    /// Whether a step to `q` keeps `r + δ` from every point sensed by the
+    /// last few scans.
+    pub(crate) fn clear_step(&self, q: Point) -> bool {
+        let keep2 = self.keep * self.keep - 1e-12;
+        self.near(self.keep + self.step + 0.15)
+            .iter()
+            .all(|h| (h.x - q.x).powi(2) + (h.y - q.y).powi(2) >= keep2)
+    }
+
+    /// The step length of boundary following (m).
+    pub(crate) fn step(&self) -> f64 {
+        self.step
+    }
+
+    /// Fires the three-ray detector from `robot` (a position the robot has
+    /// passed), the centre ray at the absolute heading `angle`.
+    pub(crate) fn detect_from(&mut self, robot: Point, angle: f64) -> Option<crate::Returns> {
+        let det = self.detector;
+        det.fire(&mut self.probe, self.world, robot, angle)
+    }
+
     /// Travels along `route` (metre waypoints) in steps no longer than the
     /// lap step.
     pub(crate) fn travel(&mut self, route: &[Point]) -> Result<()> {

@@ -51,9 +51,14 @@
 //! each cycle the robot travels, over its own map (what its rays saw free and
 //! where it has been, never unknown space), to the nearest such open end,
 //! and traces that slab. It stops when no open end is left.
+//!
+//! **The seed's own algorithm** ([`Algorithm::Paper`], module `paper`): the
+//! same robot and primitives without the cycle algorithm and the Reeb graph,
+//! as Demir 2018 publishes it, to show its documented failures.
 
 mod body;
 mod cycle;
+mod paper;
 mod reeb;
 mod robot_map;
 
@@ -121,9 +126,36 @@ pub struct TracePoint {
     pub state: State,
 }
 
+/// Which algorithm explores.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Algorithm {
+    /// Ours: every slab closed by a cycle round its boundary, the Reeb graph
+    /// from the boundary traced, the nearest open end next.
+    #[default]
+    Cycles,
+    /// The seed's own (Demir 2018 as published): lapping without a cycle
+    /// algorithm, back to the "previous node" when a lap stops short, graph
+    /// edges from the last visited node (`paper` module).
+    Paper,
+}
+
+impl Algorithm {
+    /// Its name on the command line.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Algorithm::Cycles => "cycles",
+            Algorithm::Paper => "paper",
+        }
+    }
+}
+
 /// The robot and the planner's settings.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Config {
+    /// The algorithm (default: ours, [`Algorithm::Cycles`]).
+    pub algorithm: Algorithm,
     /// Body radius `r` (m).
     pub robot_radius: f64,
     /// Tool radius `T` (m); laps are `2T` apart.
@@ -151,6 +183,7 @@ impl Default for Config {
     /// 180 rays of 3 m, no noise, 2 cm following steps, a 2.5 cm map.
     fn default() -> Self {
         Self {
+            algorithm: Algorithm::Cycles,
             robot_radius: 0.2,
             tool_radius: 0.25,
             margin: 0.04,
@@ -299,15 +332,24 @@ pub fn explore(world: &WorldGeometry, start: Point, cfg: &Config) -> Result<Expl
         });
     }
     let body = body::Body::new(world, cfg, start)?;
-    let mut explorer = cycle::Explorer::new(body, cfg);
-    explorer.run()?;
-    let graph = explorer.reeb.graph();
-    let body = explorer.body;
+    let (body, graph, counters) = match cfg.algorithm {
+        Algorithm::Cycles => {
+            let mut explorer = cycle::Explorer::new(body, cfg);
+            explorer.run()?;
+            (explorer.body, explorer.reeb.graph(), explorer.counters)
+        }
+        Algorithm::Paper => {
+            let mut explorer = paper::Paper::new(body, cfg);
+            explorer.run()?;
+            let graph = explorer.graph();
+            (explorer.body, graph, explorer.counters)
+        }
+    };
     Ok(Exploration {
-        complete: explorer.counters.unreached == 0,
+        complete: counters.unreached == 0,
         trace: body.trace,
         graph,
-        counters: explorer.counters,
+        counters,
         length_m: body.length,
         collisions: body.collisions,
         min_clearance: body.min_clearance,

@@ -148,6 +148,17 @@ impl RobotMap {
         }
     }
 
+    /// Positions recorded so far (first visits of cells).
+    pub(crate) fn visit_count(&self) -> usize {
+        self.visits.len()
+    }
+
+    /// The order (0-based) in which the cell of `p` was first visited, if it was.
+    pub(crate) fn first_visit(&self, p: Point) -> Option<usize> {
+        let c = self.cell_index(p)?;
+        (self.visited[c] > 0).then(|| self.visited[c] as usize - 1)
+    }
+
     fn centre(&self, k: usize) -> Point {
         let (i, j) = (k % self.w, k / self.w);
         Point::new(

@@ -10,6 +10,12 @@ use oxcover::{Error, Result};
 
 use super::args::{ANY, PNG, SVG, YAML, asked, check_outputs, parse_start};
 
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub(crate) enum AlgorithmArg {
+    Cycles,
+    Paper,
+}
+
 #[derive(Debug, clap::Args)]
 pub(crate) struct ExploreArgs {
     /// World file (.ron: boundary, polygons, discs, rectangles; see fixtures/worlds).
@@ -60,6 +66,11 @@ pub(crate) struct ExploreArgs {
     /// Seed of the range noise.
     #[arg(long, value_name = "N", default_value_t = 0)]
     pub(crate) seed: u64,
+    /// Algorithm: `cycles` (ours: every slab closed by a cycle, the Reeb
+    /// graph from what was traced) or `paper` (Demir 2018 as published: no
+    /// cycle algorithm, graph edges from the last visited node).
+    #[arg(long, value_enum, default_value_t = AlgorithmArg::Cycles)]
+    pub(crate) algorithm: AlgorithmArg,
     /// Start position in metres [default: the world file's `start`].
     #[arg(long, value_name = "X,Y", value_parser = parse_start, allow_hyphen_values = true)]
     pub(crate) start: Option<Point>,
@@ -104,6 +115,10 @@ pub(crate) fn cmd_explore(a: &ExploreArgs) -> Result<()> {
     check_outputs(&[&a.world], &outs)?;
     let world = oxcover::world::World::read(&a.world)?;
     let cfg = Config {
+        algorithm: match a.algorithm {
+            AlgorithmArg::Cycles => oxcover::world::sensor_bcd::Algorithm::Cycles,
+            AlgorithmArg::Paper => oxcover::world::sensor_bcd::Algorithm::Paper,
+        },
         robot_radius: a.robot_radius,
         tool_radius: a.tool_radius,
         margin: a.margin,
