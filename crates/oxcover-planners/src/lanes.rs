@@ -123,10 +123,16 @@ fn plan_lanes(
     angle_deg: Option<f64>,
 ) -> Result<Vec<oxcover_grid::Point>> {
     let plannable = input.plannable;
-    let start = input
-        .coarse
-        .representative(input.start)
-        .ok_or_else(|| Error::Internal("start coverage cell has no representative".into()))?;
+    // Where the robot stands: a path from its coverage cell's representative
+    // would begin with a detour to it and back.
+    let start = if plannable[input.start_cell] {
+        input.start_cell
+    } else {
+        input
+            .coarse
+            .representative(input.start)
+            .ok_or_else(|| Error::Internal("start coverage cell has no representative".into()))?
+    };
     let time = input.time;
     let tool = input.tool_cells.max(0.5);
     let loops = edge_loops(plannable, input.admissible);

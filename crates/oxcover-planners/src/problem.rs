@@ -245,6 +245,7 @@ impl CoverageProblem {
             admissible: &self.cells.admissible,
             coarse: &self.coarse,
             start: self.coarse.coarse_of(self.cells.start),
+            start_cell: self.cells.start,
             seed,
             frame: self.frame,
             tool_cells: self.tool_cells,
@@ -426,6 +427,9 @@ pub struct PlannerInput<'a> {
     pub coarse: &'a CoarseGrid,
     /// The start coverage cell (it has a representative).
     pub start: Cell,
+    /// The fine cell the robot starts in (plannable), inside `start`; the
+    /// pipeline's lead-in reaches a coverage plan's first cell from here.
+    pub start_cell: Cell,
     /// Seed for randomised planners.
     pub seed: u64,
     /// Where the grid lies in metres (for planners returning metre paths).

@@ -10,7 +10,8 @@ use oxcover_grid::{CoarseGrid, DiscRobot, Grid, OccupancyGrid};
 use oxcover_planners::optimal::{Optimal, lower_bound, optimal};
 use oxcover_planners::{CoverageProblem, PlanOutput, PlannerInput, Start, registry};
 
-/// A metre plan (unit frame): starts at the start's representative, every
+/// A metre plan (unit frame): starts where the robot stands or at its
+/// coverage cell's representative, every
 /// segment crosses plannable cells only, and (if complete) passes within half
 /// a coverage cell of every representative.
 fn check_metres(input: &PlannerInput<'_>, points: &[Point], complete: bool) -> Result<(), String> {
@@ -20,7 +21,8 @@ fn check_metres(input: &PlannerInput<'_>, points: &[Point], complete: bool) -> R
         .coarse
         .representative(input.start)
         .ok_or("no start representative")?;
-    if pts.first() != Some(&cell_center(rep)) {
+    let first = pts.first();
+    if first != Some(&cell_center(rep)) && first != Some(&cell_center(input.start_cell)) {
         return Err(format!(
             "starts at {:?}, not {:?}",
             pts.first(),
