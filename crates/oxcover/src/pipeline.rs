@@ -455,30 +455,51 @@ fn plan_region(
         .unwrap_or(problem.start_cell());
     let mut points = raw.clone();
     let boundary = if request.boundary_pass {
-        // Room by room, the pass is a straightened tour; the map-wide pass
-        // keeps its nearest-first order (the papers' experiments).
-        let route = if request.rooms {
-            problem.boundary_tour(&raw, end)?
-        } else {
-            problem.boundary_pass(&raw, end)?
-        };
-        let mut extra = Vec::new();
         // The pass starts from `end`'s centre; a metre plan may stop elsewhere
         // in that cell, so go to the centre first (a move inside one cell).
         let off_centre = raw.last() != Some(&frame.cell_center(end));
-        if off_centre && route.pending > 0 {
-            extra.push(end);
-        }
-        extra.extend_from_slice(&route.cells);
-        if request.rooms {
+        // The points a route appends, as a tour (straightened metres) or as
+        // the nearest-first pass (collinear cells merged, as every cell path
+        // is written); and its cells.
+        let appended = |route: &BoundaryRoute, tour: bool| {
+            let mut extra = Vec::new();
             if off_centre && route.pending > 0 {
-                points.push(frame.cell_center(end));
+                extra.push(end);
             }
-            points.extend(route.points.iter().copied());
+            extra.extend_from_slice(&route.cells);
+            let pts = if tour {
+                let mut v = Vec::new();
+                if off_centre && route.pending > 0 {
+                    v.push(frame.cell_center(end));
+                }
+                v.extend(route.points.iter().copied());
+                v
+            } else {
+                cells_to_points(frame, &extra)
+            };
+            (pts, extra)
+        };
+        // Room by room, the pass is a straightened tour, or the nearest-first
+        // pass where that is faster (estimated time from the plan's end); the
+        // map-wide pass keeps its nearest-first order (the papers'
+        // experiments).
+        let (route, (pts, extra)) = if request.rooms {
+            let tour = problem.boundary_tour(&raw, end)?;
+            let pass = problem.boundary_pass(&raw, end)?;
+            let (a, b) = (appended(&tour, true), appended(&pass, false));
+            let from: Vec<Point> = raw.last().copied().into_iter().collect();
+            let time = |p: &[Point]| request.time.polyline(&[from.as_slice(), p].concat());
+            if time(&b.0) < time(&a.0) {
+                (pass, b)
+            } else {
+                (tour, a)
+            }
         } else {
-            // Collinear cells merged, as every cell path is written.
-            points.extend(cells_to_points(frame, &extra));
-        }
+            let pass = problem.boundary_pass(&raw, end)?;
+            let b = appended(&pass, false);
+            (pass, b)
+        };
+        points.extend(pts);
         cells.extend(extra);
         Some(route)
     } else {
