@@ -368,7 +368,9 @@ impl PlanOutcome {
 ///
 /// With [`PlanRequest::rooms`] on and more than one room unit on the map
 /// ([`room_units`]), the planner plans each unit on its own
-/// ([`CoverageProblem::restricted`]), the boundary pass runs per unit, and
+/// ([`CoverageProblem::restricted`]), the boundary pass runs per unit (the
+/// straightened tour or the nearest-first pass, whichever has the lower
+/// estimated time), and
 /// the units are visited in the order of [`room_order`], joined by
 /// straightened shortest transits ([`CoverageProblem::transit`]): every room
 /// is finished before the robot leaves it.

@@ -35,7 +35,8 @@ pub(crate) struct PlanArgs {
     /// Plan room by room (the rooms of `oxcover segment`, cut at doors; each
     /// finished before the next, in the order of least transit time); off
     /// plans the whole map at once with the papers' nearest-first boundary pass
-    /// (on, a map with one room is planned at once with the straightened pass).
+    /// (on, each room's pass is the straightened tour or the nearest-first
+    /// pass, whichever is faster; a map with one room is planned at once).
     #[arg(long, value_enum, value_name = "on|off", default_value_t = OnOff::On)]
     pub(crate) rooms: OnOff,
     #[command(flatten)]
