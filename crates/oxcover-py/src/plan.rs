@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use numpy::PyArray2;
 use oxcover::grid::{DiscRobot, OccupancyGrid};
-use oxcover::pipeline::{Outputs, PlanOutcome, PlanRequest, plan_scene, planner};
+use oxcover::pipeline::{Outputs, PlanOutcome, PlanRequest, plan_scene};
 use oxcover::planners::{PlannerOptions, Start, TimeModel};
 use oxcover::render::render_bytes;
 use pyo3::exceptions::PyValueError;
@@ -76,41 +76,6 @@ pub(crate) fn robot(
 /// The time model for `est_time_s` and the planners' choices.
 pub(crate) fn time_model(speed: f64, turn_rate: f64) -> PyResult<TimeModel> {
     TimeModel::new(speed, turn_rate).map_err(|e| error(&e.into()))
-}
-
-/// The plan request the arguments of `plan` describe.
-#[allow(clippy::too_many_arguments)]
-fn request(
-    map: &Map,
-    planner_name: &str,
-    robot_radius: f64,
-    tool_radius: Option<f64>,
-    start: Option<(f64, f64)>,
-    seed: u64,
-    boundary_pass: bool,
-    rooms: bool,
-    speed: f64,
-    turn_rate: f64,
-    sweep_angle: Option<f64>,
-    memory_limit: &MemoryLimit,
-) -> PyResult<PlanRequest> {
-    let grid = &map.grid;
-    let mut options = PlannerOptions::new();
-    options.sweep_angle_deg = sweep_angle;
-    let request = PlanRequest {
-        planner: planner(planner_name, &options).map_err(|e| error(&e))?,
-        robot: robot(grid, robot_radius, tool_radius)?,
-        start: Start::from(start_point(start)?),
-        seed,
-        boundary_pass,
-        rooms,
-        time: time_model(speed, turn_rate)?,
-        memory_limit: memory_limit.bytes(),
-    };
-    request
-        .check_memory(grid, &map.name)
-        .map_err(|e| error(&e))?;
-    Ok(request)
 }
 
 /// A coverage plan: the path, its metrics, and what made it.
@@ -322,21 +287,23 @@ pub(crate) fn plan(
     sweep_angle: Option<f64>,
     memory_limit: MemoryLimit,
 ) -> PyResult<Plan> {
-    let request = request(
-        map,
-        planner,
-        robot_radius,
-        tool_radius,
-        start,
+    let grid = Arc::clone(&map.grid);
+    let mut options = PlannerOptions::new();
+    options.sweep_angle_deg = sweep_angle;
+    // The request `oxcover plan` makes of the same options.
+    let request = PlanRequest {
+        planner: oxcover::pipeline::planner(planner, &options).map_err(|e| error(&e))?,
+        robot: robot(&grid, robot_radius, tool_radius)?,
+        start: Start::from(start_point(start)?),
         seed,
         boundary_pass,
         rooms,
-        speed,
-        turn_rate,
-        sweep_angle,
-        &memory_limit,
-    )?;
-    let grid = Arc::clone(&map.grid);
+        time: time_model(speed, turn_rate)?,
+        memory_limit: memory_limit.bytes(),
+    };
+    request
+        .check_memory(&grid, &map.name)
+        .map_err(|e| error(&e))?;
     let outcome = detached(py, || oxcover::plan(&grid, &request))?;
     let path = points_array(py, &outcome.points)?.unbind();
     Ok(Plan {
