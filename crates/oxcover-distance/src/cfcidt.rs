@@ -216,6 +216,20 @@ pub struct CoarseToFineFound {
     pub lower_bound: u32,
 }
 
+impl CoarseToFineFound {
+    /// The answer when the source is itself a target.
+    fn at_source(source: Cell) -> Self {
+        Self {
+            target: source,
+            distance: 0,
+            path: vec![source],
+            fine_touched: 1,
+            coarse_touched: 0,
+            lower_bound: 0,
+        }
+    }
+}
+
 /// Reusable scratch for [`CoarseToFine::nearest`].
 #[derive(Clone, Debug, Default)]
 pub struct CoarseToFine {
@@ -368,14 +382,7 @@ impl CoarseToFine {
             return None;
         }
         if map.is_target(source) {
-            return Some(CoarseToFineFound {
-                target: source,
-                distance: 0,
-                path: vec![source],
-                fine_touched: 1,
-                coarse_touched: 0,
-                lower_bound: 0,
-            });
+            return Some(CoarseToFineFound::at_source(source));
         }
         let src = map.idx(source);
         let sb = map.block_index(source);
@@ -412,14 +419,7 @@ impl CoarseToFine {
         let n = map.width * map.height;
         let src = map.idx(source);
         if map.is_target(source) {
-            return Some(CoarseToFineFound {
-                target: source,
-                distance: 0,
-                path: vec![source],
-                fine_touched: 1,
-                coarse_touched: 0,
-                lower_bound: 0,
-            });
+            return Some(CoarseToFineFound::at_source(source));
         }
         let nb = map.bw * map.bh;
         let sb = map.block_index(source);

@@ -211,7 +211,7 @@ impl Map {
             other => {
                 return Err(bad(
                     "array",
-                    format!("of dtype {other}"),
+                    format!("dtype {other}"),
                     "dtype bool (free mask) or int8, uint8, int16, int32, int64 (occupancy, -1..100)",
                 ));
             }

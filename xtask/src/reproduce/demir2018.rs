@@ -196,6 +196,23 @@ fn figure(
     Ok(())
 }
 
+/// The columns every results table starts with: world, coverage %,
+/// collisions, disc hits, path m, critical points found (open at the end,
+/// `|` included).
+fn lead(world: &World, o: &ExploreOutcome) -> String {
+    let mt = &o.evaluation.metrics;
+    format!(
+        "| {} | {:.2} | {} | {} | {:.1} | {}/{} |",
+        world.name,
+        100.0 * mt.coverage,
+        mt.collisions,
+        o.exploration.collisions,
+        mt.length_m,
+        found(o),
+        o.truth.len()
+    )
+}
+
 fn found(o: &ExploreOutcome) -> usize {
     o.found.iter().filter(|&&f| f).count()
 }
@@ -231,17 +248,10 @@ fn page(results: &[Measured]) -> String {
     for m in results {
         let o = &m.clean;
         let e = &o.exploration;
-        let mt = &o.evaluation.metrics;
         let _ = writeln!(
             md,
-            "| {} | {:.2} | {} | {} | {:.1} | {}/{} | {} | {} | {}/{} | {} / {} | {} / {} | {} | {} | {:.1} | {:.2} | {:.1} | {:.1} |",
-            m.world.name,
-            100.0 * mt.coverage,
-            mt.collisions,
-            e.collisions,
-            mt.length_m,
-            found(o),
-            o.truth.len(),
+            "{} {} | {} | {}/{} | {} / {} | {} / {} | {} | {} | {:.1} | {:.2} | {:.1} | {:.1} |",
+            lead(&m.world, o),
             o.same_class,
             o.spurious,
             e.counters.confirmed,
@@ -282,17 +292,10 @@ fn page(results: &[Measured]) -> String {
     for m in results {
         let o = &m.noisy;
         let e = &o.exploration;
-        let mt = &o.evaluation.metrics;
         let _ = writeln!(
             md,
-            "| {} | {:.2} | {} | {} | {:.1} | {}/{} | {} | {} / {} | {} |",
-            m.world.name,
-            100.0 * mt.coverage,
-            mt.collisions,
-            e.collisions,
-            mt.length_m,
-            found(o),
-            o.truth.len(),
+            "{} {} | {} / {} | {} |",
+            lead(&m.world, o),
             o.spurious,
             e.graph.nodes.len(),
             e.graph.edges.len(),
@@ -366,17 +369,10 @@ fn paper_section(results: &[Measured]) -> String {
     for m in results {
         let o = &m.paper;
         let e = &o.exploration;
-        let mt = &o.evaluation.metrics;
         let _ = writeln!(
             md,
-            "| {} | {:.2} | {} | {} | {:.1} | {}/{} | {} | {} / {} | {} / {} | {} | {:.1} | {:.2} | {:.1} |",
-            m.world.name,
-            100.0 * mt.coverage,
-            mt.collisions,
-            e.collisions,
-            mt.length_m,
-            found(o),
-            o.truth.len(),
+            "{} {} | {} / {} | {} / {} | {} | {:.1} | {:.2} | {:.1} |",
+            lead(&m.world, o),
             o.spurious,
             e.graph.nodes.len(),
             e.graph.edges.len(),

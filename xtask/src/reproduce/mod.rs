@@ -126,6 +126,7 @@ pub(crate) struct FigureDir {
 }
 
 impl FigureDir {
+    /// `figures`, or a new scratch folder named after the page `name`.
     pub(crate) fn new(figures: Option<&std::path::Path>, name: &str) -> anyhow::Result<Self> {
         Ok(match figures {
             Some(f) => Self {
@@ -144,6 +145,7 @@ impl FigureDir {
         })
     }
 
+    /// The path of the figure `file` in this folder.
     pub(crate) fn join(&self, file: &str) -> std::path::PathBuf {
         self.path.join(file)
     }

@@ -17,17 +17,27 @@
 //!   there (the seed: "it moves to previous node and continue scanning from
 //!   the down side of the obstacle"). Nothing else is remembered: a cell that
 //!   only a sweep in the other direction could enter (the pocket of a
-//!   concave obstacle) is never entered. A cell ends when the follower
-//!   cannot reach the next slice (the boundary turns back). The sweep runs
-//!   towards +x from the start, then towards −x from the start's slice.
-//! - **The graph: an edge from the last visited node.** A turning point of
-//!   the follower along x whose three rays are not collinear (the seed's
-//!   eq. 3) is a node; a new node gets an edge from the last node visited,
-//!   whatever cell the two belong to.
+//!   concave obstacle) is never entered. A cell ends when the robot cannot
+//!   reach the next slice: the boundary turns back, or a wall stands across
+//!   the sweep. The sweep runs towards +x from the start, then towards −x
+//!   from the start's slice.
+//! - **The graph: an edge from the last visited node.** A node is added
+//!   where the seed adds one: where a lap stops short of the previous one
+//!   (an obstacle's first critical point, found in motion to boundary) or
+//!   runs past it, where a wall across the sweep ends a cell (the seed's
+//!   border critical point), and where the three rays fired along x at a
+//!   turning point of the follower find a critical point. A new node gets an
+//!   edge from the last node visited, whatever cell the two belong to.
 //!
-//! Two choices the seed leaves open, taken so the run terminates: a resumed
-//! side whose first lap lands on ground the robot has already swept (its own
-//! visited cells) is dropped; nodes closer than half a lap spacing are one.
+//! Choices the seed leaves open, taken so that the run is a fair lapping
+//! robot and terminates: between slices the robot moves straight along x
+//! where the way is clear and follows the boundary only where it is not; a
+//! wall closer than a lap spacing gets one last lap; a resumed side whose
+//! first lap lands on ground the robot has already swept (its own visited
+//! cells) is dropped; nodes closer than half a lap spacing are one; travel
+//! to a kept node runs over the robot's own map, through gaps barely wider
+//! than the robot if need be (keeping its body radius), backing out of a
+//! corner along its own path first.
 
 use crate::{CriticalKind, Detection};
 use oxcover_grid::Point;
