@@ -11,6 +11,7 @@
 //!   images, MovingAI `.map`, an ASCII test format; a PGM+yaml writer.
 //! - [`admissible()`], [`edt`]: cells a disc robot may occupy, from an exact
 //!   Euclidean distance transform.
+//! - [`contour`]: iso-contours of a field over the grid (marching squares).
 //! - [`components`], [`Coverability`]: reachable and coverable cells for a
 //!   robot, a tool and a start.
 //! - [`CoarseGrid`]: tool-sized coverage cells over a fine map.
@@ -38,6 +39,7 @@
 pub mod admissible;
 pub mod coarse;
 pub mod components;
+pub mod contour;
 pub mod coverable;
 pub mod edt;
 pub mod error;

@@ -21,7 +21,7 @@ use std::path::{Path, PathBuf};
 
 use oxcover::closed_loop::{ClosedLoop, ControllerKind, Run, execute};
 use oxcover::pipeline::{PlanRequest, plan};
-use oxcover::planners::{CoverageProblem, Start};
+use oxcover::planners::{CoverageProblem, Start, TimeModel};
 use oxcover::render::{Scene, render_to_file};
 use oxcover::report::metric_rows;
 use oxcover_grid::components::components4;
@@ -128,14 +128,16 @@ pub fn starts(map: &OccupancyGrid, env: usize) -> anyhow::Result<Vec<Point>> {
 pub struct SmoothDetails {
     /// Environment index.
     pub env: usize,
-    /// CIDT iterations (virtual-wall paths).
-    pub iterations: usize,
-    /// Path length by behaviour (m): spiral, wall following, transit, virtual wall.
+    /// Path length by behaviour (m): wall following, virtual walls, slivers, transit.
     pub lengths: [f64; 4],
-    /// Bézier segments driven curved / straight.
-    pub segments: (usize, usize),
-    /// Summed PSO cost before and after.
-    pub pso: (f64, f64),
+    /// Rings driven / dropped.
+    pub rings: (usize, usize),
+    /// Sliver spines driven / left.
+    pub slivers: (usize, usize),
+    /// Sharp corners rounded / left.
+    pub fillets: (usize, usize),
+    /// Summed estimated time of the rounded corners before and after PSO (s).
+    pub fillet_time: (f64, f64),
 }
 
 /// Plans `smooth` from `start` and tallies its behaviours.
@@ -148,15 +150,15 @@ pub fn smooth_details(
     start: Point,
 ) -> anyhow::Result<SmoothDetails> {
     use oxcover_planners::smooth::{Behaviour, Smooth};
-    let problem = CoverageProblem::new(map, robot(), Start::At(start))?;
+    let problem = CoverageProblem::new(map, robot(), Start::At(start))?.with_time(time_model()?);
     let d = Smooth::new().plan_detailed(&problem.input(0))?;
     let mut lengths = [0.0; 4];
     for piece in &d.pieces {
         let slot = match piece.behaviour {
-            Behaviour::Spiral => 0,
-            Behaviour::WallFollowing => 1,
-            Behaviour::Transit => 2,
-            Behaviour::VirtualWall => 3,
+            Behaviour::WallFollowing => 0,
+            Behaviour::VirtualWall => 1,
+            Behaviour::Sliver => 2,
+            Behaviour::Transit => 3,
         };
         lengths[slot] += d.points[piece.start..=piece.end]
             .windows(2)
@@ -165,11 +167,21 @@ pub fn smooth_details(
     }
     Ok(SmoothDetails {
         env,
-        iterations: d.iterations,
         lengths,
-        segments: (d.curved_segments, d.straight_segments),
-        pso: d.pso_cost,
+        rings: d.rings,
+        slivers: d.slivers,
+        fillets: d.fillets,
+        fillet_time: d.fillet_time,
     })
+}
+
+/// The planners' time model: the runs' top speed and turn rate, so that
+/// `smooth` scores its choices with the robot it plans for.
+///
+/// # Errors
+/// Never: the limits are valid constants.
+pub fn time_model() -> anyhow::Result<TimeModel> {
+    Ok(TimeModel::new(limits().v_max, limits().omega_max)?)
 }
 
 /// One executed run.
@@ -234,6 +246,7 @@ pub fn run_one(
             .start(Start::At(start))
             .boundary_pass(false)
             .rooms(false)
+            .time(time_model()?)
     };
     let planned = plan(map, &req)?;
     let run = execute(map, robot(), &planned.points, cfg)?;
@@ -440,21 +453,24 @@ fn page(worlds: &[World], results: &[Measured], details: &[SmoothDetails]) -> St
             );
         }
     }
-    md += "\n## What `smooth` did (start 0 of each environment, planned path)\n\n| environment | CIDT iterations | spiral m | wall following m | transit m | virtual wall m | Bézier segments curved / straight | PSO cost before → after |\n|---|---:|---:|---:|---:|---:|---:|---:|\n";
+    md += "\n## What `smooth` did (start 0 of each environment, planned path)\n\n| environment | rings driven / dropped | wall following m | virtual walls m | slivers m | slivers driven / left | transit m | corners rounded / stopped | their est. time, widest fillet → after PSO s |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for d in details {
         let _ = writeln!(
             md,
-            "| {} | {} | {:.1} | {:.1} | {:.1} | {:.1} | {} / {} | {:.0} → {:.0} |",
+            "| {} | {} / {} | {:.1} | {:.1} | {:.1} | {} / {} | {:.1} | {} / {} | {:.1} → {:.1} |",
             worlds[d.env].name,
-            d.iterations,
+            d.rings.0,
+            d.rings.1,
             d.lengths[0],
             d.lengths[1],
             d.lengths[2],
+            d.slivers.0,
+            d.slivers.1,
             d.lengths[3],
-            d.segments.0,
-            d.segments.1,
-            d.pso.0,
-            d.pso.1
+            d.fillets.0,
+            d.fillets.1,
+            d.fillet_time.0,
+            d.fillet_time.1
         );
     }
     md += "\n## Figures (start 0 of each environment: executed path in blue over the plan in orange; covered cells blue, missed coverable cells orange)\n\n";
@@ -511,7 +527,7 @@ fn findings(results: &[Measured], details: &[SmoothDetails]) -> String {
     let max_err = results.iter().map(|m| m.tracking.1).fold(0.0, f64::max) * 100.0;
     let transit: Vec<f64> = details
         .iter()
-        .map(|d| d.lengths[2] / d.lengths.iter().sum::<f64>().max(1e-9) * 100.0)
+        .map(|d| d.lengths[3] / d.lengths.iter().sum::<f64>().max(1e-9) * 100.0)
         .collect();
     let (t_lo, t_hi) = (
         transit.iter().copied().fold(f64::INFINITY, f64::min),
@@ -522,6 +538,9 @@ fn findings(results: &[Measured], details: &[SmoothDetails]) -> String {
         eff.iter().copied().fold(0.0, f64::max),
     );
     let paper = |row: usize, col: usize| PAPER[row].1[col].0;
+    // The planner's reach margin (`oxcover_planners::smooth`): 12 % of the
+    // brush radius, at least 0.35 cells of 5 cm.
+    let margin = (0.12 * TOOL_RADIUS).max(0.35 * 0.05) * 100.0;
     let mut md = String::from("\n## The seed's claims, one by one\n\n");
     md += "Means over the 30 runs of each planner. The seed compares its method with BSA and Spiral-STC; plain STC is listed beside them (see *The STC row* below).\n\n";
     md += "| claim | seed (proposed / BSA / STC) | here (smooth / BSA / Spiral-STC / STC) | verdict |\n|---|---|---|---|\n";
@@ -559,15 +578,18 @@ fn findings(results: &[Measured], details: &[SmoothDetails]) -> String {
         md,
         "\n## Discussion\n\n\
          - **Coverage.** `smooth`'s worst run covers {worst:.1} %, with {collisions} collisions of the robot disc over all {} runs of every planner. Plain STC, which drops partly blocked mega-cells, covers {:.1} %, near the seed's 84.3 ± 7.3 % for its \"STC\".\n\
-         - **Time and energy per covered area follow path length, not speed.** `smooth` drives {:.0} m per run on average, against {:.0} m for BSA and {:.0} m for Spiral-STC; plain STC drives {:.0} m, skips the partly blocked mega-cells (the slowest parts to cover) and leaves {:.0} % uncovered; its time per covered area, {:.1} s/m², is {} of the four.\n\
-         - **Why `smooth`'s path is longer**, from the table of what it did: lanes overlap by a reach margin so that a tracked robot keeps coverage despite its deviations (the grid planners' lanes are exactly one coverage cell apart); the contour-parallel rings of the virtual-wall paths do not nest evenly where the explored region's boundary is ragged, and CIDT sends the robot back for the slivers between them (transits are {t_lo:.0}–{t_hi:.0} % of its planned path here); walls are followed closely so that the strip beside them is covered.\n\
-         - **Tracking.** The largest tracking error of any run is {max_err:.1} cm.\n\
+         - **Time per covered area is path length over speed.** `smooth` drives {:.0} m per run on average at {:.1} cm/s, against {:.0} m at {:.1} cm/s for BSA and {:.0} m at {:.1} cm/s for Spiral-STC; plain STC drives {:.0} m, skips the partly blocked mega-cells (the slowest parts to cover) and leaves {:.0} % uncovered; its time per covered area, {:.1} s/m², is {} of the four.\n\
+         - **Where `smooth`'s path goes**, from the table of what it did: most of it is rings, long passes whose curves the time law drives without stopping; lanes overlap by the reach margin so that a tracked robot keeps coverage despite its deviations (the grid planners' lanes are exactly one coverage cell apart); transits between rings and to slivers are {t_lo:.0}–{t_hi:.0} % of its planned path here; the slivers left undriven (too slow per covered area) and the outermost row beside staircase walls are most of what it misses.\n\
+         - **Tracking.** The largest tracking error of any run is {max_err:.1} cm; `smooth`'s lanes overlap by twice its reach margin, {margin:.1} cm each side.\n\
          - **Absolute energy.** Our efficiencies ({e_lo:.1}–{e_hi:.1} m²/kJ by planner) are {:.0}–{:.0} times the seed's ({:.3}–{:.3}). Our floor cleaner draws about 5.5 W (a 5 W constant load plus the wheel motors; no vacuum or brush motors, unknown for the seed's robot). Working back from the seed's own figures (29.6 s/m² and 0.344 m²/kJ for BSA) gives an average draw near 100 W, so a cleaning load must dominate there. Under a constant load, energy efficiency is proportional to 1 / normalized time, so our energy ranking is the time ranking, as in the seed, where the two columns also agree.\n\n",
         results.len(),
         cov[1],
         length[3],
+        vel[3],
         length[0],
+        vel[0],
         length[2],
+        vel[2],
         length[1],
         100.0 - cov[1],
         time[1],
