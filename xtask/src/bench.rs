@@ -189,6 +189,22 @@ fn smooth_section(root: &Path) -> anyhow::Result<()> {
             smooth / bsa
         );
     }
+    let large = root.join("target/criterion/smooth_large");
+    md += "\nThe acceptance maps where `smooth` is slowest (group `smooth_large`, planner call only, from the largest region; robot and tool 0.3 m on the first two, the contract's default radii on the maze):\n\n| map | bsa ms | smooth ms | smooth / bsa | smooth under 5 s |\n|---|---:|---:|---:|---|\n";
+    for name in ["warehouse", "lab_b", "maze512-2-0"] {
+        let t = |p: &str| estimate_ns(&large.join(format!("{p}_{name}"))).map(|(m, _)| m);
+        let (Ok(bsa), Ok(smooth)) = (t("bsa"), t("smooth")) else {
+            md += &format!("| {name} | not measured (map not found) | | | |\n");
+            continue;
+        };
+        md += &format!(
+            "| {name} | {:.1} | {:.1} | {:.2} | {} |\n",
+            bsa / 1e6,
+            smooth / 1e6,
+            smooth / bsa,
+            if smooth < 5e9 { "yes" } else { "**no**" }
+        );
+    }
     crate::replace_section(&root.join("docs/benchmarks.md"), "smooth", &md)?;
     Ok(())
 }

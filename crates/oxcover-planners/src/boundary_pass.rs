@@ -248,12 +248,11 @@ fn toured(
     // Place 0 is the start; places 1..=n the anchors.
     let mut places = vec![end];
     places.extend(cells_of.iter().copied());
-    let dist = |a: usize, b: usize| {
-        let (p, q) = (places[a], places[b]);
-        let (dr, dc) = (p.row as f64 - q.row as f64, p.col as f64 - q.col as f64);
-        (dr * dr + dc * dc).sqrt()
-    };
-    let order = crate::tour::open_tour(places.len(), 0, &dist);
+    let xy: Vec<(f64, f64)> = places
+        .iter()
+        .map(|p| (p.col as f64, p.row as f64))
+        .collect();
+    let order = crate::tour::open_tour_euclidean(&xy, 0);
     let mut wave = Wavefront::new(plannable);
     let mut route = Vec::new();
     let mut path = PathBuilder::new(plannable, end);

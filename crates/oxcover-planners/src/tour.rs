@@ -12,6 +12,13 @@
 //! Costs may be asymmetric for Held–Karp; the local search assumes
 //! symmetric costs (2-opt reverses stretches). Ties break towards lower
 //! indices, so the result depends only on the costs.
+//!
+//! [`open_tour_euclidean`] orders points in the plane: as [`open_tour`] up to
+//! [`NEIGHBOUR_LIMIT`] points; beyond (the boundary pass of a large map can
+//! have ten thousand anchors, where the O(n²) rounds above take seconds),
+//! nearest neighbour over a bucket grid, then 2-opt restricted to each
+//! point's [`NEIGHBOURS`] nearest (Johnson & McGeoch's neighbour lists),
+//! O(n · k) per round apart from the reversals.
 
 /// Largest number of places ordered exactly.
 pub const EXACT_LIMIT: usize = 13;
@@ -19,6 +26,224 @@ pub const EXACT_LIMIT: usize = 13;
 pub const OR_OPT_LIMIT: usize = 120;
 /// Most improvement rounds.
 pub const ROUNDS: usize = 30;
+
+/// Largest number of points [`open_tour_euclidean`] orders with [`open_tour`].
+pub const NEIGHBOUR_LIMIT: usize = 2000;
+/// Candidate neighbours per point of the large-tour 2-opt.
+pub const NEIGHBOURS: usize = 10;
+
+/// An open tour over `points` (Euclidean distances) from `start` (see the
+/// module docs).
+#[must_use]
+pub fn open_tour_euclidean(points: &[(f64, f64)], start: usize) -> Vec<usize> {
+    let n = points.len();
+    let dist = |a: usize, b: usize| {
+        let (p, q) = (points[a], points[b]);
+        ((p.0 - q.0) * (p.0 - q.0) + (p.1 - q.1) * (p.1 - q.1)).sqrt()
+    };
+    if n <= NEIGHBOUR_LIMIT {
+        return open_tour(n, start, &dist);
+    }
+    let grid = PointGrid::new(points);
+    let mut tour = Vec::with_capacity(n);
+    let mut used = vec![false; n];
+    let mut here = start.min(n - 1);
+    used[here] = true;
+    tour.push(here);
+    let mut live = grid.clone();
+    live.remove(here, points);
+    for _ in 1..n {
+        let Some(next) = live.nearest(points[here], points, |_| true) else {
+            break;
+        };
+        live.remove(next, points);
+        used[next] = true;
+        tour.push(next);
+        here = next;
+    }
+    let neighbours: Vec<Vec<usize>> = (0..n)
+        .map(|i| grid.k_nearest(i, points, NEIGHBOURS))
+        .collect();
+    two_opt_neighbours(&mut tour, &neighbours, &dist);
+    tour
+}
+
+/// 2-opt on an open tour (first place fixed) trying, for each edge `(a, b)`,
+/// only the edges that join `a` to one of its neighbours.
+fn two_opt_neighbours(
+    tour: &mut [usize],
+    neighbours: &[Vec<usize>],
+    dist: &dyn Fn(usize, usize) -> f64,
+) {
+    let n = tour.len();
+    let mut pos = vec![0; n];
+    for (i, &p) in tour.iter().enumerate() {
+        pos[p] = i;
+    }
+    let edge = |t: &[usize], i: usize| if i + 1 < n { dist(t[i], t[i + 1]) } else { 0.0 };
+    for _round in 0..ROUNDS {
+        let mut better = false;
+        for i in 0..n {
+            for k in 0..neighbours[tour[i]].len() {
+                let c = neighbours[tour[i]][k];
+                let j = pos[c];
+                // Reverse tour[lo..=hi] so that tour[i] and c become adjacent.
+                let (lo, hi) = if j > i + 1 {
+                    (i + 1, j)
+                } else if j + 1 < i {
+                    (j + 1, i)
+                } else {
+                    continue;
+                };
+                let before = edge(tour, lo - 1) + edge(tour, hi);
+                let after = dist(tour[lo - 1], tour[hi])
+                    + if hi + 1 < n {
+                        dist(tour[lo], tour[hi + 1])
+                    } else {
+                        0.0
+                    };
+                if after < before - 1e-12 * before.max(1.0) {
+                    tour[lo..=hi].reverse();
+                    for (q, &p) in tour.iter().enumerate().take(hi + 1).skip(lo) {
+                        pos[p] = q;
+                    }
+                    better = true;
+                }
+            }
+        }
+        if !better {
+            break;
+        }
+    }
+}
+
+/// Points in square buckets, for nearest-point queries.
+#[derive(Clone)]
+struct PointGrid {
+    origin: (f64, f64),
+    size: f64,
+    cols: usize,
+    rows: usize,
+    cells: Vec<Vec<usize>>,
+}
+
+impl PointGrid {
+    /// About two points per bucket.
+    fn new(points: &[(f64, f64)]) -> Self {
+        let (mut lo, mut hi) = (
+            (f64::INFINITY, f64::INFINITY),
+            (f64::NEG_INFINITY, f64::NEG_INFINITY),
+        );
+        for p in points {
+            lo = (lo.0.min(p.0), lo.1.min(p.1));
+            hi = (hi.0.max(p.0), hi.1.max(p.1));
+        }
+        let area = ((hi.0 - lo.0) * (hi.1 - lo.1)).max(1.0);
+        let size = (2.0 * area / points.len().max(1) as f64).sqrt().max(1e-9);
+        let cols = ((hi.0 - lo.0) / size).floor() as usize + 1;
+        let rows = ((hi.1 - lo.1) / size).floor() as usize + 1;
+        let mut g = Self {
+            origin: lo,
+            size,
+            cols,
+            rows,
+            cells: vec![Vec::new(); cols * rows],
+        };
+        for (i, &p) in points.iter().enumerate() {
+            let (r, c) = g.slot(p);
+            g.cells[r * cols + c].push(i);
+        }
+        g
+    }
+
+    fn slot(&self, p: (f64, f64)) -> (usize, usize) {
+        let c = (((p.0 - self.origin.0) / self.size).max(0.0) as usize).min(self.cols - 1);
+        let r = (((p.1 - self.origin.1) / self.size).max(0.0) as usize).min(self.rows - 1);
+        (r, c)
+    }
+
+    fn remove(&mut self, i: usize, points: &[(f64, f64)]) {
+        let (r, c) = self.slot(points[i]);
+        self.cells[r * self.cols + c].retain(|&j| j != i);
+    }
+
+    /// The nearest point to `p` that `keep` accepts (ties: lower index).
+    fn nearest(
+        &self,
+        p: (f64, f64),
+        points: &[(f64, f64)],
+        keep: impl Fn(usize) -> bool,
+    ) -> Option<usize> {
+        let (r0, c0) = self.slot(p);
+        let mut best: Option<(f64, usize)> = None;
+        for ring in 0..=self.rows.max(self.cols) {
+            let bound = ring.saturating_sub(1) as f64 * self.size;
+            if best.is_some_and(|b| b.0 < bound) {
+                break;
+            }
+            let (rlo, rhi) = (r0.saturating_sub(ring), (r0 + ring).min(self.rows - 1));
+            let (clo, chi) = (c0.saturating_sub(ring), (c0 + ring).min(self.cols - 1));
+            for r in rlo..=rhi {
+                for c in clo..=chi {
+                    if r.abs_diff(r0) != ring && c.abs_diff(c0) != ring {
+                        continue;
+                    }
+                    for &j in &self.cells[r * self.cols + c] {
+                        if !keep(j) {
+                            continue;
+                        }
+                        let q = points[j];
+                        let d = ((q.0 - p.0) * (q.0 - p.0) + (q.1 - p.1) * (q.1 - p.1)).sqrt();
+                        if best.is_none_or(|b| (d, j) < b) {
+                            best = Some((d, j));
+                        }
+                    }
+                }
+            }
+            if rlo == 0 && clo == 0 && rhi == self.rows - 1 && chi == self.cols - 1 {
+                break;
+            }
+        }
+        best.map(|b| b.1)
+    }
+
+    /// The `k` points nearest point `i` (itself excluded; ties: lower index).
+    fn k_nearest(&self, i: usize, points: &[(f64, f64)], k: usize) -> Vec<usize> {
+        let p = points[i];
+        let (r0, c0) = self.slot(p);
+        let mut found: Vec<(f64, usize)> = Vec::new();
+        for ring in 0..=self.rows.max(self.cols) {
+            let bound = ring.saturating_sub(1) as f64 * self.size;
+            if found.len() >= k && found[k - 1].0 < bound {
+                break;
+            }
+            let (rlo, rhi) = (r0.saturating_sub(ring), (r0 + ring).min(self.rows - 1));
+            let (clo, chi) = (c0.saturating_sub(ring), (c0 + ring).min(self.cols - 1));
+            for r in rlo..=rhi {
+                for c in clo..=chi {
+                    if r.abs_diff(r0) != ring && c.abs_diff(c0) != ring {
+                        continue;
+                    }
+                    for &j in &self.cells[r * self.cols + c] {
+                        if j != i {
+                            let q = points[j];
+                            found.push((
+                                ((q.0 - p.0) * (q.0 - p.0) + (q.1 - p.1) * (q.1 - p.1)).sqrt(),
+                                j,
+                            ));
+                        }
+                    }
+                }
+            }
+            found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            found.truncate(k);
+            if rlo == 0 && clo == 0 && rhi == self.rows - 1 && chi == self.cols - 1 {
+                break;
+            }
+        }
+        found.into_iter().map(|f| f.1).collect()
+    }
+}
 
 /// An open tour over places `0..n` starting at `start` (which must be
 /// `< n`), every place exactly once, minimising the sum of `cost(a, b)` over
@@ -213,5 +438,43 @@ mod tests {
             worst = worst.max(h / e);
         }
         assert!(worst < 1.15, "heuristic up to {worst} times the optimum");
+    }
+
+    /// Past the limit: a permutation from the start, no longer than the
+    /// nearest-neighbour tour, and within a few percent of the full 2-opt.
+    #[test]
+    fn large_euclidean_tours_are_close_to_the_full_search() {
+        let mut s = 7u64;
+        let mut rnd = || {
+            s = s
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let n = NEIGHBOUR_LIMIT + 500;
+        let pts: Vec<(f64, f64)> = (0..n).map(|_| (100.0 * rnd(), 60.0 * rnd())).collect();
+        let cost = |a: usize, b: usize| (pts[a].0 - pts[b].0).hypot(pts[a].1 - pts[b].1);
+        let fast = open_tour_euclidean(&pts, 3);
+        assert_eq!(fast[0], 3);
+        let mut sorted = fast.clone();
+        sorted.sort_unstable();
+        assert_eq!(sorted, (0..n).collect::<Vec<_>>());
+        let nn = nearest_neighbour(n, 3, &cost);
+        let mut full = nn.clone();
+        improve(&mut full, &cost);
+        let (f, g, h) = (
+            tour_cost(&fast, &cost),
+            tour_cost(&nn, &cost),
+            tour_cost(&full, &cost),
+        );
+        assert!(
+            f <= g + 1e-9,
+            "neighbour 2-opt {f} above nearest neighbour {g}"
+        );
+        assert!(f <= 1.05 * h, "neighbour 2-opt {f} against full 2-opt {h}");
+        // Below the limit it is open_tour itself.
+        let small = &pts[..50];
+        let c2 = |a: usize, b: usize| (small[a].0 - small[b].0).hypot(small[a].1 - small[b].1);
+        assert_eq!(open_tour_euclidean(small, 0), open_tour(50, 0, &c2));
     }
 }

@@ -39,6 +39,7 @@ const PER_CELL: &[(&str, [f64; 2], [f64; 2])] = &[
     ("trapezoidal", [30.0, 28.0], [43.0, 28.0]),
     ("border-expansion", [63.0, 45.0], [63.0, 45.0]),
     ("lanes", [31.0, 29.0], [43.0, 29.0]),
+    ("smooth", [71.0, 65.0], [70.0, 65.0]),
 ];
 
 /// Coefficients for planners without a measurement at this scale (they
