@@ -55,9 +55,12 @@ fn smooth(c: &mut Criterion) {
     g.finish();
 }
 
+/// Robot and tool radius (m), or `None` for the contract's defaults.
+type Radii = Option<(f64, f64)>;
+
 /// The acceptance maps of the second group: (name, path under
-/// `../shared/maps`, resolution for an image, radii or the defaults).
-pub const LARGE: [(&str, &str, f64, Option<(f64, f64)>); 3] = [
+/// `../shared/maps`, resolution for an image, radii).
+pub const LARGE: [(&str, &str, f64, Radii); 3] = [
     (
         "warehouse",
         "ros/nav2/nav2_bringup_maps/warehouse.yaml",

@@ -83,10 +83,10 @@ fn two_opt_neighbours(
     let edge = |t: &[usize], i: usize| if i + 1 < n { dist(t[i], t[i + 1]) } else { 0.0 };
     for _round in 0..ROUNDS {
         let mut better = false;
-        for i in 0..n {
-            for k in 0..neighbours[tour[i]].len() {
-                let c = neighbours[tour[i]][k];
-                let j = pos[c];
+        for start in 0..n {
+            let a = tour[start];
+            for &c in &neighbours[a] {
+                let (i, j) = (pos[a], pos[c]);
                 // Reverse tour[lo..=hi] so that tour[i] and c become adjacent.
                 let (lo, hi) = if j > i + 1 {
                     (i + 1, j)
