@@ -182,6 +182,73 @@ mod tests {
         assert_eq!(iso_contours(&g, &[1.0], 0.0).len(), 2);
     }
 
+    use proptest::prelude::*;
+
+    proptest! {
+        /// On seeded random fields: every contour point lies on a lattice
+        /// edge between a sample at or above the level and one below, where
+        /// the linear interpolation of the two equals the level; consecutive
+        /// points share a unit square; every edge that changes side is
+        /// crossed exactly once.
+        #[test]
+        fn contours_cross_each_changing_edge_once(
+            w in 1usize..9, h in 1usize..9, seed in any::<u64>(), level in -0.5f64..1.5,
+        ) {
+            let mut s = seed | 1;
+            let f = Grid::from_fn(w, h, |_| {
+                s ^= s << 13;
+                s ^= s >> 7;
+                s ^= s << 17;
+                (s % 1000) as f64 / 1000.0
+            });
+            let outside = -1.0;
+            let value = |r: isize, c: isize| {
+                if r < 0 || c < 0 || r >= h as isize || c >= w as isize {
+                    outside
+                } else {
+                    f[Cell::new(r as usize, c as usize)]
+                }
+            };
+            let cs = iso_contours(&f, &[level], outside);
+            let mut crossings = 0;
+            for c in &cs {
+                for (i, p) in c.points.iter().enumerate() {
+                    let (x, y) = (p.x - 0.5, p.y - 0.5); // sample coordinates
+                    let on_col = (x - x.round()).abs() < 1e-9;
+                    let on_row = (y - y.round()).abs() < 1e-9;
+                    prop_assert!(on_col || on_row, "{p:?} not on a lattice edge");
+                    let (a, b, t) = if on_row {
+                        let r = y.round() as isize;
+                        let c0 = x.floor() as isize;
+                        (value(r, c0), value(r, c0 + 1), x - c0 as f64)
+                    } else {
+                        let k = x.round() as isize;
+                        let r0 = y.floor() as isize;
+                        (value(r0, k), value(r0 + 1, k), y - r0 as f64)
+                    };
+                    prop_assert!((a >= level) != (b >= level), "{p:?}: {a} {b} same side");
+                    prop_assert!((a + t * (b - a) - level).abs() < 1e-9);
+                    let q = c.points[(i + 1) % c.points.len()];
+                    prop_assert!((q.x - p.x).abs() <= 1.0 + 1e-9 && (q.y - p.y).abs() <= 1.0 + 1e-9);
+                    crossings += 1;
+                }
+            }
+            let mut changing = 0;
+            for r in -1..=h as isize {
+                for c in -1..=w as isize {
+                    let here = value(r, c) >= level;
+                    if c < w as isize && here != (value(r, c + 1) >= level) {
+                        changing += 1;
+                    }
+                    if r < h as isize && here != (value(r + 1, c) >= level) {
+                        changing += 1;
+                    }
+                }
+            }
+            prop_assert_eq!(crossings, changing);
+        }
+    }
+
     #[test]
     fn saddles_follow_the_centre_value() {
         // Diagonal insides: joined when the centre mean is inside.

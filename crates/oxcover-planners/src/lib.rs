@@ -20,7 +20,7 @@
 //! | `trapezoidal` | [`sweep`] | slab decomposition (Pavlíček 2002, Fig. 8) | yes |
 //! | `border-expansion` | [`border_expansion`] | Pavlicek et al. 2002 | yes |
 //! | `lanes` | [`lanes`] | edge loops + straight lanes at each region's fastest angle, ordered by estimated time (issue 15) | yes |
-//! | `smooth` | [`smooth`] | Lee et al. 2011: spiral, wall following, CFCIDT, PSO-tuned Bézier virtual-wall paths | yes |
+//! | `smooth` | [`smooth`] | after Lee et al. 2011, for time: wall following, nested virtual-wall rings, slivers, PSO-tuned Bézier fillets | yes |
 //!
 //! The online sensor-based planner of Demir 2018 (`sensor-bcd`) needs a
 //! world to sense, not a grid; it lives in `oxcover-world`.
