@@ -431,7 +431,7 @@ impl<'a> Run<'a> {
         let mut items: Vec<Item> = iso_contours(&field, &levels, outside)
             .into_iter()
             .map(|Contour { level, points }| Item {
-                points: self.shape_ring(points, level),
+                points: self.shape_ring(snap_to_centres(points), level),
                 closed: true,
                 level,
                 reps: Vec::new(),
@@ -865,6 +865,28 @@ impl Buckets {
         }
         best.map(|b| (b.2, b.3))
     }
+}
+
+/// Contour points within a hundredth of a cell of a cell centre moved onto
+/// it (the levels lie [`LEVEL_EPSILON`] under values the distance takes at
+/// cell centres), and the repeats this makes dropped.
+fn snap_to_centres(points: Vec<GridPoint>) -> Vec<GridPoint> {
+    let mut out: Vec<GridPoint> = Vec::with_capacity(points.len());
+    for p in points {
+        let c = GridPoint::new(p.x.floor() + 0.5, p.y.floor() + 0.5);
+        let q = if norm(p.x - c.x, p.y - c.y) < 0.01 {
+            c
+        } else {
+            p
+        };
+        if out.last() != Some(&q) {
+            out.push(q);
+        }
+    }
+    while out.len() > 1 && out.first() == out.last() {
+        out.pop();
+    }
+    out
 }
 
 /// How much closer than the tool radius a cell must be to a polyline to
