@@ -405,7 +405,7 @@ fn no_tuple_coordinates_in_public_signatures() {
         "fn from_wheels",
         "fn wheel_rates",
         "fn saturate",
-        "pub pso_cost",
+        "pub fillet_time",
         "pub size",
         "pub x: (f64, f64)",
         "pub span",

@@ -248,9 +248,9 @@ fn toured(
     // Place 0 is the start; places 1..=n the anchors.
     let mut places = vec![end];
     places.extend(cells_of.iter().copied());
-    let xy: Vec<(f64, f64)> = places
+    let xy: Vec<Point> = places
         .iter()
-        .map(|p| (p.col as f64, p.row as f64))
+        .map(|p| Point::new(p.col as f64, p.row as f64))
         .collect();
     let order = crate::tour::open_tour_euclidean(&xy, 0);
     let mut wave = Wavefront::new(plannable);

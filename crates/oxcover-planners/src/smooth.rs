@@ -83,6 +83,7 @@ use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_distance};
 use oxcover_grid::{Cell, Grid, Point, Vector};
 use oxcover_robot::{Limits, QuinticBezier, Timing};
 
+use crate::buckets::{Buckets, distance};
 use crate::error::{Error, Result};
 use crate::metre_path::{Clearance, PathBuilder};
 use crate::planner::Planner;
@@ -562,7 +563,8 @@ impl<'a> Run<'a> {
 
     /// Drives the items nearest first (see the module docs).
     fn drive_items(&mut self, mut items: Vec<Item>) -> Result<()> {
-        let mut index = Buckets::new(self.plannable.width(), self.plannable.height(), self.bucket);
+        let mut index =
+            ItemIndex::new(self.plannable.width(), self.plannable.height(), self.bucket);
         for (i, it) in items.iter().enumerate() {
             if it.closed {
                 for (j, &p) in it.points.iter().enumerate() {
@@ -796,73 +798,41 @@ impl<'a> Run<'a> {
     }
 }
 
-/// Item points in square buckets, for the nearest item not yet driven.
-struct Buckets {
-    size: usize,
-    cols: usize,
-    rows: usize,
-    /// Per bucket: (item, point index, point).
-    cells: Vec<Vec<(usize, usize, GridPoint)>>,
-}
+/// Item points in square buckets (payload: item, point index), for the
+/// nearest item not yet driven.
+struct ItemIndex(Buckets<(usize, usize)>);
 
-impl Buckets {
+impl ItemIndex {
     fn new(width: usize, height: usize, size: usize) -> Self {
-        let (cols, rows) = (width.div_ceil(size).max(1), height.div_ceil(size).max(1));
-        Self {
-            size,
-            cols,
-            rows,
-            cells: vec![Vec::new(); cols * rows],
-        }
-    }
-
-    fn slot(&self, p: GridPoint) -> (usize, usize) {
-        let c = ((p.x.max(0.0) as usize) / self.size).min(self.cols - 1);
-        let r = ((p.y.max(0.0) as usize) / self.size).min(self.rows - 1);
-        (r, c)
+        Self(Buckets::new(
+            Point::new(0.0, 0.0),
+            Point::new(width as f64, height as f64),
+            size as f64,
+        ))
     }
 
     fn insert(&mut self, p: GridPoint, item: usize, index: usize) {
-        let (r, c) = self.slot(p);
-        self.cells[r * self.cols + c].push((item, index, p));
+        self.0.insert(p, (item, index));
     }
 
     /// The nearest point of an item not `done` (ties: lower ring level, then
-    /// lower item number), searching square rings of buckets outwards until
-    /// no closer point can remain. Buckets whose items are all done are
-    /// emptied on the way.
+    /// lower item number). Points of items done are dropped on the way.
     fn nearest(&mut self, p: GridPoint, done: &[bool], items: &[Item]) -> Option<(usize, usize)> {
-        let (r0, c0) = self.slot(p);
         let mut best: Option<(f64, usize, usize, usize)> = None;
-        let reach = self.rows.max(self.cols);
-        for ring in 0..=reach {
-            // Every point in this ring of buckets is at least this far.
-            let bound = (ring.saturating_sub(1) * self.size) as f64;
-            if best.is_some_and(|b| b.0 < bound) {
-                break;
-            }
-            let (rlo, rhi) = (r0.saturating_sub(ring), (r0 + ring).min(self.rows - 1));
-            let (clo, chi) = (c0.saturating_sub(ring), (c0 + ring).min(self.cols - 1));
-            for r in rlo..=rhi {
-                for c in clo..=chi {
-                    if r.abs_diff(r0) != ring && c.abs_diff(c0) != ring {
-                        continue;
-                    }
-                    let cell = &mut self.cells[r * self.cols + c];
-                    cell.retain(|e| !done[e.0]);
-                    for &(item, index, q) in cell.iter() {
-                        let d = norm(q.x - p.x, q.y - p.y);
-                        let key = (d, items[item].level, item, index);
-                        if best.is_none_or(|b| (key.0, key.1, key.2) < (b.0, b.1, b.2)) {
-                            best = Some(key);
-                        }
+        self.0.search(
+            p,
+            &mut best,
+            |best, cell| {
+                cell.retain(|e| !done[e.1.0]);
+                for &(q, (item, index)) in cell.iter() {
+                    let key = (distance(q, p), items[item].level, item, index);
+                    if best.is_none_or(|b| (key.0, key.1, key.2) < (b.0, b.1, b.2)) {
+                        *best = Some(key);
                     }
                 }
-            }
-            if rlo == 0 && clo == 0 && rhi == self.rows - 1 && chi == self.cols - 1 {
-                break;
-            }
-        }
+            },
+            |best, bound| best.is_some_and(|b| b.0 < bound),
+        );
         best.map(|b| (b.2, b.3))
     }
 }
@@ -1205,7 +1175,7 @@ mod tests {
                 reps: Vec::new(),
             },
         ];
-        let mut b = Buckets::new(40, 40, 4);
+        let mut b = ItemIndex::new(40, 40, 4);
         b.insert(items[0].points[0], 0, 0);
         b.insert(items[1].points[0], 1, 0);
         b.insert(items[1].points[1], 1, 1);

@@ -20,6 +20,10 @@
 //! point's [`NEIGHBOURS`] nearest (Johnson & McGeoch's neighbour lists),
 //! O(n · k) per round apart from the reversals.
 
+use oxcover_grid::Point;
+
+use crate::buckets::{Buckets, distance};
+
 /// Largest number of places ordered exactly.
 pub const EXACT_LIMIT: usize = 13;
 /// Largest number of places Or-opt runs on (its rounds cost O(n³)).
@@ -35,29 +39,23 @@ pub const NEIGHBOURS: usize = 10;
 /// An open tour over `points` (Euclidean distances) from `start` (see the
 /// module docs).
 #[must_use]
-pub fn open_tour_euclidean(points: &[(f64, f64)], start: usize) -> Vec<usize> {
+pub fn open_tour_euclidean(points: &[Point], start: usize) -> Vec<usize> {
     let n = points.len();
-    let dist = |a: usize, b: usize| {
-        let (p, q) = (points[a], points[b]);
-        ((p.0 - q.0) * (p.0 - q.0) + (p.1 - q.1) * (p.1 - q.1)).sqrt()
-    };
+    let dist = |a: usize, b: usize| distance(points[a], points[b]);
     if n <= NEIGHBOUR_LIMIT {
         return open_tour(n, start, &dist);
     }
-    let grid = PointGrid::new(points);
+    let mut grid = PointGrid::new(points);
     let mut tour = Vec::with_capacity(n);
-    let mut used = vec![false; n];
     let mut here = start.min(n - 1);
-    used[here] = true;
     tour.push(here);
     let mut live = grid.clone();
     live.remove(here, points);
     for _ in 1..n {
-        let Some(next) = live.nearest(points[here], points, |_| true) else {
+        let Some(next) = live.nearest(points[here]) else {
             break;
         };
         live.remove(next, points);
-        used[next] = true;
         tour.push(next);
         here = next;
     }
@@ -117,130 +115,70 @@ fn two_opt_neighbours(
     }
 }
 
-/// Points in square buckets, for nearest-point queries.
+/// The points in buckets of about two points each, for nearest queries.
 #[derive(Clone)]
-struct PointGrid {
-    origin: (f64, f64),
-    size: f64,
-    cols: usize,
-    rows: usize,
-    cells: Vec<Vec<usize>>,
-}
+struct PointGrid(Buckets<usize>);
 
 impl PointGrid {
-    /// About two points per bucket.
-    fn new(points: &[(f64, f64)]) -> Self {
+    fn new(points: &[Point]) -> Self {
         let (mut lo, mut hi) = (
-            (f64::INFINITY, f64::INFINITY),
-            (f64::NEG_INFINITY, f64::NEG_INFINITY),
+            Point::new(f64::INFINITY, f64::INFINITY),
+            Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
         );
         for p in points {
-            lo = (lo.0.min(p.0), lo.1.min(p.1));
-            hi = (hi.0.max(p.0), hi.1.max(p.1));
+            lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
+            hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
         }
-        let area = ((hi.0 - lo.0) * (hi.1 - lo.1)).max(1.0);
-        let size = (2.0 * area / points.len().max(1) as f64).sqrt().max(1e-9);
-        let cols = ((hi.0 - lo.0) / size).floor() as usize + 1;
-        let rows = ((hi.1 - lo.1) / size).floor() as usize + 1;
-        let mut g = Self {
-            origin: lo,
-            size,
-            cols,
-            rows,
-            cells: vec![Vec::new(); cols * rows],
-        };
+        let area = ((hi.x - lo.x) * (hi.y - lo.y)).max(1.0);
+        let size = (2.0 * area / points.len().max(1) as f64).sqrt();
+        let mut b = Buckets::new(lo, hi, size);
         for (i, &p) in points.iter().enumerate() {
-            let (r, c) = g.slot(p);
-            g.cells[r * cols + c].push(i);
+            b.insert(p, i);
         }
-        g
+        Self(b)
     }
 
-    fn slot(&self, p: (f64, f64)) -> (usize, usize) {
-        let c = (((p.0 - self.origin.0) / self.size).max(0.0) as usize).min(self.cols - 1);
-        let r = (((p.1 - self.origin.1) / self.size).max(0.0) as usize).min(self.rows - 1);
-        (r, c)
+    fn remove(&mut self, i: usize, points: &[Point]) {
+        self.0.bucket_mut(points[i]).retain(|e| e.1 != i);
     }
 
-    fn remove(&mut self, i: usize, points: &[(f64, f64)]) {
-        let (r, c) = self.slot(points[i]);
-        self.cells[r * self.cols + c].retain(|&j| j != i);
-    }
-
-    /// The nearest point to `p` that `keep` accepts (ties: lower index).
-    fn nearest(
-        &self,
-        p: (f64, f64),
-        points: &[(f64, f64)],
-        keep: impl Fn(usize) -> bool,
-    ) -> Option<usize> {
-        let (r0, c0) = self.slot(p);
+    /// The nearest point to `p` (ties: lower index).
+    fn nearest(&mut self, p: Point) -> Option<usize> {
         let mut best: Option<(f64, usize)> = None;
-        for ring in 0..=self.rows.max(self.cols) {
-            let bound = ring.saturating_sub(1) as f64 * self.size;
-            if best.is_some_and(|b| b.0 < bound) {
-                break;
-            }
-            let (rlo, rhi) = (r0.saturating_sub(ring), (r0 + ring).min(self.rows - 1));
-            let (clo, chi) = (c0.saturating_sub(ring), (c0 + ring).min(self.cols - 1));
-            for r in rlo..=rhi {
-                for c in clo..=chi {
-                    if r.abs_diff(r0) != ring && c.abs_diff(c0) != ring {
-                        continue;
-                    }
-                    for &j in &self.cells[r * self.cols + c] {
-                        if !keep(j) {
-                            continue;
-                        }
-                        let q = points[j];
-                        let d = ((q.0 - p.0) * (q.0 - p.0) + (q.1 - p.1) * (q.1 - p.1)).sqrt();
-                        if best.is_none_or(|b| (d, j) < b) {
-                            best = Some((d, j));
-                        }
+        self.0.search(
+            p,
+            &mut best,
+            |best, cell| {
+                for &(q, j) in cell.iter() {
+                    let d = distance(p, q);
+                    if best.is_none_or(|b| (d, j) < b) {
+                        *best = Some((d, j));
                     }
                 }
-            }
-            if rlo == 0 && clo == 0 && rhi == self.rows - 1 && chi == self.cols - 1 {
-                break;
-            }
-        }
+            },
+            |best, bound| best.is_some_and(|b| b.0 < bound),
+        );
         best.map(|b| b.1)
     }
 
     /// The `k` points nearest point `i` (itself excluded; ties: lower index).
-    fn k_nearest(&self, i: usize, points: &[(f64, f64)], k: usize) -> Vec<usize> {
+    fn k_nearest(&mut self, i: usize, points: &[Point], k: usize) -> Vec<usize> {
         let p = points[i];
-        let (r0, c0) = self.slot(p);
         let mut found: Vec<(f64, usize)> = Vec::new();
-        for ring in 0..=self.rows.max(self.cols) {
-            let bound = ring.saturating_sub(1) as f64 * self.size;
-            if found.len() >= k && found[k - 1].0 < bound {
-                break;
-            }
-            let (rlo, rhi) = (r0.saturating_sub(ring), (r0 + ring).min(self.rows - 1));
-            let (clo, chi) = (c0.saturating_sub(ring), (c0 + ring).min(self.cols - 1));
-            for r in rlo..=rhi {
-                for c in clo..=chi {
-                    if r.abs_diff(r0) != ring && c.abs_diff(c0) != ring {
-                        continue;
-                    }
-                    for &j in &self.cells[r * self.cols + c] {
-                        if j != i {
-                            let q = points[j];
-                            found.push((
-                                ((q.0 - p.0) * (q.0 - p.0) + (q.1 - p.1) * (q.1 - p.1)).sqrt(),
-                                j,
-                            ));
-                        }
-                    }
-                }
-            }
-            found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-            found.truncate(k);
-            if rlo == 0 && clo == 0 && rhi == self.rows - 1 && chi == self.cols - 1 {
-                break;
-            }
-        }
+        self.0.search(
+            p,
+            &mut found,
+            |found, cell| {
+                found.extend(
+                    cell.iter()
+                        .filter(|e| e.1 != i)
+                        .map(|&(q, j)| (distance(p, q), j)),
+                );
+                found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                found.truncate(k);
+            },
+            |found, bound| found.len() >= k && found[k - 1].0 < bound,
+        );
         found.into_iter().map(|f| f.1).collect()
     }
 }
@@ -452,8 +390,10 @@ mod tests {
             (s >> 11) as f64 / (1u64 << 53) as f64
         };
         let n = NEIGHBOUR_LIMIT + 500;
-        let pts: Vec<(f64, f64)> = (0..n).map(|_| (100.0 * rnd(), 60.0 * rnd())).collect();
-        let cost = |a: usize, b: usize| (pts[a].0 - pts[b].0).hypot(pts[a].1 - pts[b].1);
+        let pts: Vec<Point> = (0..n)
+            .map(|_| Point::new(100.0 * rnd(), 60.0 * rnd()))
+            .collect();
+        let cost = |a: usize, b: usize| (pts[a].x - pts[b].x).hypot(pts[a].y - pts[b].y);
         let fast = open_tour_euclidean(&pts, 3);
         assert_eq!(fast[0], 3);
         let mut sorted = fast.clone();
@@ -474,7 +414,7 @@ mod tests {
         assert!(f <= 1.05 * h, "neighbour 2-opt {f} against full 2-opt {h}");
         // Below the limit it is open_tour itself.
         let small = &pts[..50];
-        let c2 = |a: usize, b: usize| (small[a].0 - small[b].0).hypot(small[a].1 - small[b].1);
+        let c2 = |a: usize, b: usize| (small[a].x - small[b].x).hypot(small[a].y - small[b].y);
         assert_eq!(open_tour_euclidean(small, 0), open_tour(50, 0, &c2));
     }
 }

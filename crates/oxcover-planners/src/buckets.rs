@@ -1,0 +1,130 @@
+//! Points in square buckets, for nearest-point searches that grow outwards
+//! ring by ring of buckets (the `smooth` planner's order of rings and
+//! spines, the large open tours of [`crate::tour`]).
+
+use oxcover_grid::Point;
+
+/// A point and its payload.
+pub(crate) type Entry<T> = (Point, T);
+
+/// Points with payloads `T` in square buckets of side `size`.
+#[derive(Clone, Debug)]
+pub(crate) struct Buckets<T> {
+    origin: Point,
+    size: f64,
+    cols: usize,
+    rows: usize,
+    cells: Vec<Vec<Entry<T>>>,
+}
+
+impl<T> Buckets<T> {
+    /// Buckets of side `size` over the box `lo ..= hi`; points outside it
+    /// fall into the border buckets.
+    pub(crate) fn new(lo: Point, hi: Point, size: f64) -> Self {
+        let size = size.max(1e-9);
+        let cols = ((hi.x - lo.x).max(0.0) / size).floor() as usize + 1;
+        let rows = ((hi.y - lo.y).max(0.0) / size).floor() as usize + 1;
+        Self {
+            origin: lo,
+            size,
+            cols,
+            rows,
+            cells: (0..cols * rows).map(|_| Vec::new()).collect(),
+        }
+    }
+
+    fn slot(&self, p: Point) -> (usize, usize) {
+        let c = (((p.x - self.origin.x) / self.size).max(0.0) as usize).min(self.cols - 1);
+        let r = (((p.y - self.origin.y) / self.size).max(0.0) as usize).min(self.rows - 1);
+        (r, c)
+    }
+
+    /// Adds `value` at `p`.
+    pub(crate) fn insert(&mut self, p: Point, value: T) {
+        let (r, c) = self.slot(p);
+        self.cells[r * self.cols + c].push((p, value));
+    }
+
+    /// The bucket of `p`, to edit in place.
+    pub(crate) fn bucket_mut(&mut self, p: Point) -> &mut Vec<Entry<T>> {
+        let (r, c) = self.slot(p);
+        &mut self.cells[r * self.cols + c]
+    }
+
+    /// Hands `visit` the buckets around `p` ring by ring (the bucket of `p`
+    /// first) with the search's `state`, stopping before a ring when
+    /// `enough` accepts the state and the least distance any point of that
+    /// ring can have, or when the grid is done.
+    pub(crate) fn search<S>(
+        &mut self,
+        p: Point,
+        state: &mut S,
+        mut visit: impl FnMut(&mut S, &mut Vec<Entry<T>>),
+        mut enough: impl FnMut(&S, f64) -> bool,
+    ) {
+        let (r0, c0) = self.slot(p);
+        for ring in 0..=self.rows.max(self.cols) {
+            if enough(state, ring.saturating_sub(1) as f64 * self.size) {
+                return;
+            }
+            let (rlo, rhi) = (r0.saturating_sub(ring), (r0 + ring).min(self.rows - 1));
+            let (clo, chi) = (c0.saturating_sub(ring), (c0 + ring).min(self.cols - 1));
+            for r in rlo..=rhi {
+                for c in clo..=chi {
+                    if r.abs_diff(r0) == ring || c.abs_diff(c0) == ring {
+                        visit(state, &mut self.cells[r * self.cols + c]);
+                    }
+                }
+            }
+            if rlo == 0 && clo == 0 && rhi == self.rows - 1 && chi == self.cols - 1 {
+                return;
+            }
+        }
+    }
+}
+
+/// Euclidean distance.
+pub(crate) fn distance(a: Point, b: Point) -> f64 {
+    ((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y)).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The search finds the nearest point whatever the bucket size, and
+    /// stops early once nothing closer can remain.
+    #[test]
+    fn search_finds_the_nearest_point() {
+        let pts = [(0.5, 0.5), (9.0, 9.0), (4.0, 5.0), (4.2, 4.9)].map(|(x, y)| Point::new(x, y));
+        for size in [0.5, 1.0, 3.0, 20.0] {
+            let mut b = Buckets::new(Point::new(0.0, 0.0), Point::new(10.0, 10.0), size);
+            for (i, &p) in pts.iter().enumerate() {
+                b.insert(p, i);
+            }
+            let q = Point::new(4.3, 4.8);
+            let mut best: Option<(f64, usize)> = None;
+            let mut rings = 0;
+            b.search(
+                q,
+                &mut best,
+                |best, cell| {
+                    for &(p, i) in cell.iter() {
+                        let d = distance(p, q);
+                        if best.is_none_or(|b| (d, i) < b) {
+                            *best = Some((d, i));
+                        }
+                    }
+                },
+                |best, bound| {
+                    rings += 1;
+                    best.is_some_and(|b| b.0 < bound)
+                },
+            );
+            assert_eq!(best.map(|b| b.1), Some(3), "size {size}");
+            if size <= 1.0 {
+                assert!(rings < 6, "size {size}: {rings} rings");
+            }
+        }
+    }
+}
