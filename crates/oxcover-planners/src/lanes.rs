@@ -55,6 +55,7 @@ use oxcover_grid::edt::center_distance_sq;
 use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear, segment_distance};
 use oxcover_grid::{Cell, Grid};
 
+use crate::buckets::Buckets;
 use crate::error::{Error, Result};
 use crate::metre_path::PathBuilder;
 use crate::planner::{Planner, PlannerOptions};
@@ -811,23 +812,36 @@ fn order_nodes(nodes: &[Node<'_>], start: GridPoint, t: &TimeModel) -> Vec<(usiz
         return Vec::new();
     }
     let cost = |p: GridPoint, q: GridPoint| (q - p).norm() / t.linear_speed;
-    // Nearest neighbour over every entry.
+    // Nearest neighbour over every entry: the least cost, ties to the lower
+    // node and option. Entries sit in buckets, searched ring by ring
+    // outwards until no farther ring can hold a cheaper one (a full scan
+    // was O(n²): 35 s on a 512² random grid of 20 % obstacles).
+    let entries: Vec<(GridPoint, usize, usize)> = nodes
+        .iter()
+        .enumerate()
+        .flat_map(|(i, node)| (0..node.options()).map(move |k| (node.ends(k).0, i, k)))
+        .collect();
+    let mut index = entry_buckets(&entries);
     let mut used = vec![false; n];
     let mut tour: Vec<(usize, usize)> = Vec::with_capacity(n);
     let mut here = start;
     for _ in 0..n {
         let mut best: Option<(f64, usize, usize)> = None;
-        for (i, node) in nodes.iter().enumerate() {
-            if used[i] {
-                continue;
-            }
-            for k in 0..node.options() {
-                let c = cost(here, node.ends(k).0);
-                if best.is_none_or(|b| c < b.0) {
-                    best = Some((c, i, k));
+        index.search(
+            here,
+            &mut best,
+            |best, cell| {
+                cell.retain(|e| !used[e.1.0]);
+                for &(q, (i, k)) in cell.iter() {
+                    let c = cost(here, q);
+                    if best.is_none_or(|b| (c, i, k) < b) {
+                        *best = Some((c, i, k));
+                    }
                 }
-            }
-        }
+            },
+            // Every entry of the next ring is at least `bound` away.
+            |best, bound| best.is_some_and(|b| b.0 < bound * (1.0 - 1e-12) / t.linear_speed),
+        );
         let Some((_, i, k)) = best else { break };
         used[i] = true;
         tour.push((i, k));
@@ -870,6 +884,24 @@ fn order_nodes(nodes: &[Node<'_>], start: GridPoint, t: &TimeModel) -> Vec<(usiz
     }
     best_options(nodes, &mut tour, start, &cost);
     tour
+}
+
+/// The entries `(point, node, option)` in buckets of about two each.
+fn entry_buckets(entries: &[(GridPoint, usize, usize)]) -> Buckets<(usize, usize)> {
+    let (mut lo, mut hi) = (
+        GridPoint::new(f64::INFINITY, f64::INFINITY),
+        GridPoint::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+    );
+    for (p, _, _) in entries {
+        lo = GridPoint::new(lo.x.min(p.x), lo.y.min(p.y));
+        hi = GridPoint::new(hi.x.max(p.x), hi.y.max(p.y));
+    }
+    let area = ((hi.x - lo.x) * (hi.y - lo.y)).max(1.0);
+    let mut b = Buckets::new(lo, hi, (2.0 * area / entries.len().max(1) as f64).sqrt());
+    for &(p, i, k) in entries {
+        b.insert(p, (i, k));
+    }
+    b
 }
 
 /// Chooses every node's option for the fixed order (exact: a shortest path
