@@ -15,6 +15,9 @@ pub(crate) struct Buckets<T> {
     cols: usize,
     rows: usize,
     cells: Vec<Vec<Entry<T>>>,
+    /// Buckets that have held an entry (some may be empty again): what a
+    /// search far from every live entry scans instead of ring after ring.
+    filled: Vec<usize>,
 }
 
 impl<T> Buckets<T> {
@@ -30,6 +33,7 @@ impl<T> Buckets<T> {
             cols,
             rows,
             cells: (0..cols * rows).map(|_| Vec::new()).collect(),
+            filled: Vec::new(),
         }
     }
 
@@ -42,7 +46,11 @@ impl<T> Buckets<T> {
     /// Adds `value` at `p`.
     pub(crate) fn insert(&mut self, p: Point, value: T) {
         let (r, c) = self.slot(p);
-        self.cells[r * self.cols + c].push((p, value));
+        let i = r * self.cols + c;
+        if self.cells[i].is_empty() {
+            self.filled.push(i);
+        }
+        self.cells[i].push((p, value));
     }
 
     /// The bucket of `p`, to edit in place.
@@ -54,7 +62,10 @@ impl<T> Buckets<T> {
     /// Hands `visit` the buckets around `p` ring by ring (the bucket of `p`
     /// first) with the search's `state`, stopping before a ring when
     /// `enough` accepts the state and the least distance any point of that
-    /// ring can have, or when the grid is done.
+    /// ring can have, or when the grid is done. Once a ring would hold more
+    /// buckets than there are non-empty ones, the non-empty buckets not yet
+    /// seen are visited instead and the search ends (a query far from every
+    /// entry costs the entries, not the grid).
     pub(crate) fn search<S>(
         &mut self,
         p: Point,
@@ -65,6 +76,22 @@ impl<T> Buckets<T> {
         let (r0, c0) = self.slot(p);
         for ring in 0..=self.rows.max(self.cols) {
             if enough(state, ring.saturating_sub(1) as f64 * self.size) {
+                return;
+            }
+            // Far out, the next ring has more buckets than hold entries at
+            // all: visit those outside the rings seen, and stop.
+            if (2 * ring + 1) * (2 * ring + 1) > 4 * self.filled.len() {
+                self.filled.retain(|&i| !self.cells[i].is_empty());
+                // A bucket emptied and filled again is listed twice.
+                self.filled.sort_unstable();
+                self.filled.dedup();
+                let cols = self.cols;
+                for &i in &self.filled {
+                    let (r, c) = (i / cols, i % cols);
+                    if r.abs_diff(r0).max(c.abs_diff(c0)) >= ring {
+                        visit(state, &mut self.cells[i]);
+                    }
+                }
                 return;
             }
             let (rlo, rhi) = (r0.saturating_sub(ring), (r0 + ring).min(self.rows - 1));
@@ -122,6 +149,25 @@ mod tests {
                 },
             );
             assert_eq!(best.map(|b| b.1), Some(3), "size {size}");
+            // Far from the only live point: the scan of filled buckets finds it.
+            for p in pts {
+                b.bucket_mut(p).retain(|e| e.1 == 1);
+            }
+            let mut far: Option<(f64, usize)> = None;
+            b.search(
+                Point::new(0.0, 0.0),
+                &mut far,
+                |far, cell| {
+                    for &(p, i) in cell.iter() {
+                        let d = distance(p, Point::new(0.0, 0.0));
+                        if far.is_none_or(|b| (d, i) < b) {
+                            *far = Some((d, i));
+                        }
+                    }
+                },
+                |far, bound| far.is_some_and(|b| b.0 < bound),
+            );
+            assert_eq!(far.map(|b| b.1), Some(1), "size {size}");
             if size <= 1.0 {
                 assert!(rings < 6, "size {size}: {rings} rings");
             }
