@@ -110,14 +110,10 @@ impl<T> Buckets<T> {
     }
 }
 
-/// Euclidean distance.
-pub(crate) fn distance(a: Point, b: Point) -> f64 {
-    ((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y)).sqrt()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use oxcover_grid::math::norm;
 
     /// The search finds the nearest point whatever the bucket size, and
     /// stops early once nothing closer can remain.
@@ -137,7 +133,7 @@ mod tests {
                 &mut best,
                 |best, cell| {
                     for &(p, i) in cell.iter() {
-                        let d = distance(p, q);
+                        let d = norm(p.x - q.x, p.y - q.y);
                         if best.is_none_or(|b| (d, i) < b) {
                             *best = Some((d, i));
                         }
@@ -159,7 +155,7 @@ mod tests {
                 &mut far,
                 |far, cell| {
                     for &(p, i) in cell.iter() {
-                        let d = distance(p, Point::new(0.0, 0.0));
+                        let d = norm(p.x, p.y);
                         if far.is_none_or(|b| (d, i) < b) {
                             *far = Some((d, i));
                         }

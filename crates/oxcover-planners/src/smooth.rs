@@ -66,10 +66,11 @@
 //! same reason.
 //!
 //! **Complexity** for `N` grid cells, `P` ring points and `C` sharp corners:
-//! the distance transform and the contours are `O(N + P)`; the order is
-//! `O(P)` bucket look-ups on average (each item's points are indexed in
-//! square buckets of a coverage cell and removed once driven); marking what
-//! the path covers is `O(length · T²)`; each fillet costs a fixed number of
+//! the distance transform and the contours are `O(N + P)`; the order is a
+//! nearest search per item over square buckets of a coverage cell (points of
+//! driven items dropped as the searches meet them; a search far from every
+//! live point scans the filled buckets, not the grid); marking what the path
+//! covers is `O(length · T)` (a stroke per segment); each fillet costs a fixed number of
 //! PSO evaluations (particles × rounds), each a time law over a few dozen
 //! points: `O(C)`. The completion step is one CIDT wave per leftover.
 
@@ -83,7 +84,7 @@ use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_distance};
 use oxcover_grid::{Cell, Grid, Point, Vector};
 use oxcover_robot::{Limits, QuinticBezier, Timing};
 
-use crate::buckets::{Buckets, distance};
+use crate::buckets::Buckets;
 use crate::error::{Error, Result};
 use crate::metre_path::{Clearance, PathBuilder};
 use crate::planner::Planner;
@@ -825,7 +826,7 @@ impl ItemIndex {
             |best, cell| {
                 cell.retain(|e| !done[e.1.0]);
                 for &(q, (item, index)) in cell.iter() {
-                    let key = (distance(q, p), items[item].level, item, index);
+                    let key = (norm(q.x - p.x, q.y - p.y), items[item].level, item, index);
                     if best.is_none_or(|b| (key.0, key.1, key.2) < (b.0, b.1, b.2)) {
                         *best = Some(key);
                     }

@@ -21,8 +21,9 @@
 //! O(n · k) per round apart from the reversals.
 
 use oxcover_grid::Point;
+use oxcover_grid::math::norm;
 
-use crate::buckets::{Buckets, distance};
+use crate::buckets::Buckets;
 
 /// Largest number of places ordered exactly.
 pub const EXACT_LIMIT: usize = 13;
@@ -41,7 +42,7 @@ pub const NEIGHBOURS: usize = 10;
 #[must_use]
 pub fn open_tour_euclidean(points: &[Point], start: usize) -> Vec<usize> {
     let n = points.len();
-    let dist = |a: usize, b: usize| distance(points[a], points[b]);
+    let dist = |a: usize, b: usize| norm(points[a].x - points[b].x, points[a].y - points[b].y);
     if n <= NEIGHBOUR_LIMIT {
         return open_tour(n, start, &dist);
     }
@@ -150,7 +151,7 @@ impl PointGrid {
             &mut best,
             |best, cell| {
                 for &(q, j) in cell.iter() {
-                    let d = distance(p, q);
+                    let d = norm(p.x - q.x, p.y - q.y);
                     if best.is_none_or(|b| (d, j) < b) {
                         *best = Some((d, j));
                     }
@@ -172,7 +173,7 @@ impl PointGrid {
                 found.extend(
                     cell.iter()
                         .filter(|e| e.1 != i)
-                        .map(|&(q, j)| (distance(p, q), j)),
+                        .map(|&(q, j)| (norm(p.x - q.x, p.y - q.y), j)),
                 );
                 found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
                 found.truncate(k);
