@@ -246,6 +246,27 @@ pub fn run(only: Option<&str>) -> anyhow::Result<()> {
                     f(&|r| r.plan_ms),
                     runs.iter().map(|r| r.plan_ms).fold(0.0, f64::max),
                 );
+                if only.is_some() {
+                    // Some planners only: every map's figures too.
+                    for m in 0..s.maps.len() {
+                        if let Outcome::Done(r) = at(p, m, rooms) {
+                            let _ = writeln!(
+                                md,
+                                "|   {} | {} | | {:.4} | {} | {:.0} | {:.1} | {:.0} | {:.3} | {:.3} | {:.0} |",
+                                short(&s.maps[m].0),
+                                on_off(rooms),
+                                r.coverage,
+                                r.collisions,
+                                r.length_m,
+                                r.turns_per_10m2,
+                                r.est_time_s,
+                                r.efficiency,
+                                r.boundary_share,
+                                r.plan_ms,
+                            );
+                        }
+                    }
+                }
                 for r in &runs {
                     if r.collisions > 0 || r.coverage < 0.99 {
                         failures.push(format!(

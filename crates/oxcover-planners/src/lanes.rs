@@ -34,20 +34,22 @@
 //!
 //! Links that are not straight and clear take the shortest route,
 //! straightened (string pulling over an A* route); every segment is checked by exact
-//! traversal, so the path never leaves the plannable cells. A last pass
-//! visits any coverage cell still uncovered, nearest first, so the plan is
-//! complete on the coverage grid like every complete planner; the
-//! pipeline's boundary pass covers the cells of the wall strip that the
-//! straightened loops pass just out of reach.
+//! traversal, so the path never leaves the plannable cells.
 //!
-//! Why not cover that strip in the loop itself: with the contract's cell
-//! model (a pose is admissible when its cell's centre clears the walls by
-//! the robot radius; a cell is covered when its centre is within the tool
-//! radius), the free cells next to a ragged wall or around an obstacle's
-//! corner are within reach of only a few boundary cells each, so a loop
-//! that covers all of them follows the pixel staircase and turns at almost
-//! every cell. Measured on the ipa floor plans, that costs more time than
-//! the boundary pass it saves (see `docs/efficiency.md`).
+//! **Detours.** The straightened loops pass some cells of the wall strip
+//! just out of reach (with the contract's cell model the free cells next
+//! to a ragged wall are within reach of only a few boundary cells each),
+//! and lanes on lines fixed for the region leave strips where a room's
+//! width is not a multiple of the spacing. Each such cell is then covered
+//! by the cheapest detour in estimated time (`detours.rs`): one new
+//! vertex on a nearby segment, or a shallow V that leaves and rejoins it,
+//! never uncovering what the segment covered. A loop that followed the
+//! staircase instead turns at almost every cell, and leaving the cells to
+//! the pipeline's boundary pass costs a visit (there and back) each: both
+//! were measured slower on the ipa floor plans (`docs/efficiency.md`).
+//! A last pass visits any coverage cell still uncovered, nearest first,
+//! so the plan is complete on the coverage grid like every complete
+//! planner; the boundary pass takes what no clear detour reached.
 
 use std::f64::consts::PI;
 
@@ -56,6 +58,7 @@ use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear, seg
 use oxcover_grid::{Cell, Grid};
 
 use crate::buckets::Buckets;
+use crate::detours::{Detours, insert_detours};
 use crate::error::{Error, Result};
 use crate::metre_path::PathBuilder;
 use crate::planner::{Planner, PlannerOptions};
@@ -214,6 +217,18 @@ fn plan_lanes(
             Node::Chain(c) => drive_chain(&mut path, c, option)?,
         }
     }
+    // What the straightened loops and the lanes' ends pass just out of
+    // reach: covered by bending the path where that costs least.
+    let detours = Detours {
+        plannable,
+        coverable: input.coverable,
+        // A hair inside the tool radius: the metrics measure in metres.
+        reach: input.tool_cells - 1e-6,
+        search: 2.0 * tool,
+        time: cell_time,
+    };
+    let (points, _) = insert_detours(path.points(), &detours);
+    path.replace(points);
     path.cover_leftovers(input.coarse, input.visit_radius())?;
     Ok(path.into_metres(&input.frame))
 }

@@ -49,6 +49,7 @@ pub mod border_expansion;
 pub mod boundary_pass;
 pub mod bsa;
 mod buckets;
+mod detours;
 pub mod dtc;
 pub mod error;
 pub mod full_dtc;

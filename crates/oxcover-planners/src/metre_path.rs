@@ -78,6 +78,14 @@ impl<'a> PathBuilder<'a> {
         self.points.truncate(len.max(1));
     }
 
+    /// Replaces the points by `points` (the caller has checked every
+    /// piece); the start stays when `points` is empty.
+    pub(crate) fn replace(&mut self, points: Vec<GridPoint>) {
+        if !points.is_empty() {
+            self.points = points;
+        }
+    }
+
     /// Appends `p` as it is (the caller has checked the piece).
     pub(crate) fn push(&mut self, p: GridPoint) {
         if self.last() != p {

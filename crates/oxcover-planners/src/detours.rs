@@ -1,0 +1,667 @@
+//! Cheapest-insertion detours: what a finished path leaves uncovered,
+//! covered by bending the path where that costs least.
+//!
+//! A cell the path misses is within the tool's reach of some plannable
+//! point; the cheapest way to cover it is usually not a separate visit (a
+//! boundary pass's anchor: there and back, a half turn) but one new vertex
+//! on a nearby segment, `a → p → b`, with `p` just within reach of the
+//! cell. Every segment near the cell is tried, with `p` the point of the
+//! cell's reach disc nearest the segment (and, where that point is not in
+//! a plannable cell or either new piece is not clear, the plannable cell
+//! centres within reach), and the one adding the least estimated time
+//! (length over speed, the change of heading at `a`, `p` and `b` over the
+//! turn rate) is inserted. The new vertex's coverage is marked, so one
+//! detour serves a whole cluster of missed cells. Cells no clear detour
+//! reaches are left (the caller's boundary pass visits them).
+//!
+//! Cost: the path's segments are kept in square buckets (each registered
+//! along its length); a missed cell looks at the segments of the buckets
+//! within its search radius. `O(missed · (segments near · candidates))`.
+
+use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear, segment_distance};
+use oxcover_grid::{Cell, Grid, Vector};
+
+use crate::time::TimeModel;
+
+/// Side of a segment bucket (cells).
+const BUCKET: f64 = 8.0;
+/// No successor.
+const END: usize = usize::MAX;
+
+/// The detour settings.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Detours<'a> {
+    /// Where the path may go.
+    pub plannable: &'a Grid<bool>,
+    /// What it must cover.
+    pub coverable: &'a Grid<bool>,
+    /// How near a cell centre one of the path's contract samples must be
+    /// (cells; the tool radius).
+    pub reach: f64,
+    /// Farthest a detour's vertex may be from the segment it bends (cells).
+    pub search: f64,
+    /// Speeds in cells per second and radians per second.
+    pub time: TimeModel,
+}
+
+/// A polyline as a linked list, so vertices can be inserted in place.
+struct Linked {
+    pts: Vec<GridPoint>,
+    next: Vec<usize>,
+    prev: Vec<usize>,
+}
+
+impl Linked {
+    fn new(points: &[GridPoint]) -> Self {
+        let n = points.len();
+        Self {
+            pts: points.to_vec(),
+            next: (0..n)
+                .map(|i| if i + 1 < n { i + 1 } else { END })
+                .collect(),
+            prev: (0..n).map(|i| if i > 0 { i - 1 } else { END }).collect(),
+        }
+    }
+
+    fn insert_after(&mut self, a: usize, p: GridPoint) -> usize {
+        let b = self.next[a];
+        let id = self.pts.len();
+        self.pts.push(p);
+        self.next.push(b);
+        self.prev.push(a);
+        self.next[a] = id;
+        if b != END {
+            self.prev[b] = id;
+        }
+        id
+    }
+
+    fn points(&self) -> Vec<GridPoint> {
+        let mut out = Vec::with_capacity(self.pts.len());
+        let mut i = if self.pts.is_empty() { END } else { 0 };
+        while i != END {
+            out.push(self.pts[i]);
+            i = self.next[i];
+        }
+        out
+    }
+}
+
+/// Absolute heading change (rad) from `u` to `v`; 0 when either is null.
+fn heading_change(u: Vector, v: Vector) -> f64 {
+    if u.norm() < 1e-12 || v.norm() < 1e-12 {
+        return 0.0;
+    }
+    (u.x * v.y - u.y * v.x).atan2(u.x * v.x + u.y * v.y).abs()
+}
+
+/// Segment ids in square buckets.
+struct SegmentBuckets {
+    cols: usize,
+    rows: usize,
+    cells: Vec<Vec<usize>>,
+}
+
+impl SegmentBuckets {
+    fn new(w: usize, h: usize) -> Self {
+        let cols = (w as f64 / BUCKET).ceil() as usize + 1;
+        let rows = (h as f64 / BUCKET).ceil() as usize + 1;
+        Self {
+            cols,
+            rows,
+            cells: vec![Vec::new(); cols * rows],
+        }
+    }
+
+    fn slot(&self, p: GridPoint) -> (usize, usize) {
+        let c = ((p.x / BUCKET).max(0.0) as usize).min(self.cols - 1);
+        let r = ((p.y / BUCKET).max(0.0) as usize).min(self.rows - 1);
+        (r, c)
+    }
+
+    /// Registers segment `id` (`a → b`) in every bucket along it.
+    fn add(&mut self, id: usize, a: GridPoint, b: GridPoint) {
+        let n = ((b - a).norm() / (BUCKET / 2.0)).ceil().max(1.0) as usize;
+        let mut last = usize::MAX;
+        for k in 0..=n {
+            let t = k as f64 / n as f64;
+            let (r, c) = self.slot(a + (b - a) * t);
+            let i = r * self.cols + c;
+            if i != last && self.cells[i].last() != Some(&id) {
+                self.cells[i].push(id);
+            }
+            last = i;
+        }
+    }
+
+    /// Segment ids registered within `radius` of `p` (with repeats).
+    fn near(&self, p: GridPoint, radius: f64, out: &mut Vec<usize>) {
+        out.clear();
+        let lo = self.slot(p - Vector::new(radius + BUCKET, radius + BUCKET));
+        let hi = self.slot(p + Vector::new(radius + BUCKET, radius + BUCKET));
+        for r in lo.0..=hi.0 {
+            for c in lo.1..=hi.1 {
+                out.extend_from_slice(&self.cells[r * self.cols + c]);
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+    }
+}
+
+/// Whether one of the contract's samples of `a → b` (the segment split
+/// into `ceil(len / ¼)` equal parts, ends included) lies within `r` of
+/// `q`: the samples either side of `q`'s foot are the nearest.
+fn sample_reaches(a: GridPoint, b: GridPoint, q: GridPoint, r: f64) -> bool {
+    let ab = b - a;
+    let len = ab.norm();
+    if len <= 0.0 {
+        return (q - a).norm() <= r;
+    }
+    let n = (len / 0.25 - 1e-9).ceil().max(1.0);
+    let s = ((q - a).dot(&ab) / (len * len)).clamp(0.0, 1.0) * n;
+    let at = |k: f64| a + ab * (k / n);
+    (at(s.floor()) - q).norm() <= r || (at(s.ceil().min(n)) - q).norm() <= r
+}
+
+/// Calls `f` once for every cell of a `w × h` grid whose centre lies
+/// within `r` of the segment `a → b` (the segment in pieces of at most
+/// `2r`; a cell belongs to the piece its projection on the segment falls
+/// in).
+fn for_stroke_cells(
+    a: GridPoint,
+    b: GridPoint,
+    r: f64,
+    w: usize,
+    h: usize,
+    mut f: impl FnMut(Cell),
+) {
+    let ab = b - a;
+    let len = ab.norm();
+    let n = (len / (2.0 * r).max(1.0)).ceil().max(1.0) as usize;
+    let param = |q: GridPoint| {
+        if len > 0.0 {
+            ((q - a).dot(&ab) / (len * len)).clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    };
+    for k in 0..n {
+        let (t0, t1) = (k as f64 / n as f64, (k + 1) as f64 / n as f64);
+        let (p0, p1) = (a + ab * t0, a + ab * t1);
+        let c0 = (p0.x.min(p1.x) - r).floor().max(0.0) as usize;
+        let c1 = ((p0.x.max(p1.x) + r).ceil().max(0.0) as usize).min(w);
+        let r0 = (p0.y.min(p1.y) - r).floor().max(0.0) as usize;
+        let r1 = ((p0.y.max(p1.y) + r).ceil().max(0.0) as usize).min(h);
+        for row in r0..r1 {
+            for col in c0..c1 {
+                let c = Cell::new(row, col);
+                let q = cell_center(c);
+                let t = param(q);
+                let mine = t >= t0 && (t < t1 || k + 1 == n);
+                if mine && sample_reaches(a, b, q, r) {
+                    f(c);
+                }
+            }
+        }
+    }
+}
+
+/// Adds one to the count of every cell within `r` of `a → b`.
+fn count_stroke(count: &mut Grid<u16>, a: GridPoint, b: GridPoint, r: f64) {
+    let (w, h) = (count.width(), count.height());
+    for_stroke_cells(a, b, r, w, h, |c| count[c] = count[c].saturating_add(1));
+}
+
+/// `points` with detours inserted until every coverable cell is within
+/// `reach` of the path or no clear detour within `search` reaches it
+/// without uncovering another. Returns the new path and the number of
+/// detours.
+pub(crate) fn insert_detours(points: &[GridPoint], d: &Detours<'_>) -> (Vec<GridPoint>, usize) {
+    if points.len() < 2 {
+        return (points.to_vec(), 0);
+    }
+    let (w, h) = (d.plannable.width(), d.plannable.height());
+    // How many segments reach each cell.
+    let mut count: Grid<u16> = Grid::new(w, h, 0);
+    for s in points.windows(2) {
+        count_stroke(&mut count, s[0], s[1], d.reach);
+    }
+    let mut path = Linked::new(points);
+    let mut buckets = SegmentBuckets::new(w, h);
+    for i in 0..points.len() - 1 {
+        buckets.add(i, points[i], points[i + 1]);
+    }
+    let missed: Vec<Cell> = d
+        .coverable
+        .true_cells()
+        .filter(|&c| count[c] == 0)
+        .collect();
+    let mut near = Vec::new();
+    let mut inserted = 0;
+    for m in missed {
+        if count[m] > 0 {
+            continue;
+        }
+        let mc = cell_center(m);
+        buckets.near(mc, d.search + d.reach, &mut near);
+        // (cost, segment, new vertices)
+        let mut options: Vec<(f64, usize, Vec<GridPoint>)> = Vec::new();
+        for &a in &near {
+            let b = path.next[a];
+            if b == END {
+                continue;
+            }
+            let (pa, pb) = (path.pts[a], path.pts[b]);
+            if segment_distance(pa, pb, mc) > d.search + d.reach {
+                continue;
+            }
+            for p in candidates(d, pa, pb, mc) {
+                for via in shapes(pa, pb, p, d.reach) {
+                    options.push((detour_cost(&path, a, &via, &d.time), a, via));
+                }
+            }
+        }
+        options.sort_by(|x, y| x.0.total_cmp(&y.0));
+        let accepted = options.into_iter().take(12).find(|(_, a, via)| {
+            let (pa, pb) = (path.pts[*a], path.pts[path.next[*a]]);
+            clear_through(d.plannable, pa, via, pb) && !uncovers(d, &count, pa, via, pb)
+        });
+        let Some((_, a, via)) = accepted else {
+            continue;
+        };
+        let b = path.next[a];
+        let (pa, pb) = (path.pts[a], path.pts[b]);
+        changed_cells(w, h, pa, &via, pb, d.reach, |c, old, new| {
+            count[c] = (count[c] + new).saturating_sub(old);
+        });
+        let mut prev = (a, pa);
+        for &p in &via {
+            let id = path.insert_after(prev.0, p);
+            buckets.add(prev.0, prev.1, p);
+            prev = (id, p);
+        }
+        buckets.add(prev.0, prev.1, pb);
+        inserted += 1;
+    }
+    (path.points(), inserted)
+}
+
+/// The vertex sequences of a detour through `p` off `a → b`: `p` alone,
+/// and V shapes leaving and rejoining the segment a few reaches either
+/// side of `p`'s foot (a long lane keeps most of its line).
+fn shapes(a: GridPoint, b: GridPoint, p: GridPoint, reach: f64) -> Vec<Vec<GridPoint>> {
+    let ab = b - a;
+    let len = ab.norm();
+    // Bending a long segment as a whole moves all of it: only V shapes.
+    let mut out = if len <= 8.0 * reach {
+        vec![vec![p]]
+    } else {
+        Vec::new()
+    };
+    if len < 1e-9 {
+        return out;
+    }
+    let u = ab / len;
+    let t = (p - a).dot(&u).clamp(0.0, len);
+    for k in [1.0, 2.0, 4.0] {
+        let span = k * reach;
+        let (t1, t2) = (t - span, t + span);
+        if t1 <= 0.0 && t2 >= len {
+            continue;
+        }
+        let mut via = Vec::with_capacity(3);
+        if t1 > 0.0 {
+            via.push(a + u * t1);
+        }
+        via.push(p);
+        if t2 < len {
+            via.push(a + u * t2);
+        }
+        out.push(via);
+    }
+    out
+}
+
+/// Whether `a → via… → b` is clear.
+fn clear_through(mask: &Grid<bool>, a: GridPoint, via: &[GridPoint], b: GridPoint) -> bool {
+    let mut prev = a;
+    for &p in via.iter().chain(std::iter::once(&b)) {
+        if !segment_clear(mask, prev, p) {
+            return false;
+        }
+        prev = p;
+    }
+    true
+}
+
+/// Calls `f(cell, old, new)` for every cell whose coverage changes when
+/// `a → b` is replaced by `a → via… → b`: `old` is 1 when `a → b` reaches
+/// it, `new` the number of new pieces that do. Where `via` starts or ends
+/// on the segment, the pieces before and after coincide with it, so only
+/// the box round the bent stretch (widened by `reach`) is looked at.
+fn changed_cells(
+    grid_w: usize,
+    grid_h: usize,
+    a: GridPoint,
+    via: &[GridPoint],
+    b: GridPoint,
+    reach: f64,
+    mut f: impl FnMut(Cell, u16, u16),
+) {
+    let ab = b - a;
+    let len = ab.norm();
+    let on_line = |p: GridPoint| len > 0.0 && segment_distance(a, b, p) < 1e-9;
+    let param = |p: GridPoint| {
+        if len > 0.0 {
+            (p - a).dot(&ab) / len
+        } else {
+            0.0
+        }
+    };
+    let (first, last) = (via[0], via[via.len() - 1]);
+    let t_lo = if on_line(first) {
+        (param(first) - reach).max(0.0)
+    } else {
+        0.0
+    };
+    let t_hi = if on_line(last) {
+        (param(last) + reach).min(len)
+    } else {
+        len
+    };
+    let u = if len > 0.0 { ab / len } else { Vector::zeros() };
+    let mut lo = a + u * t_lo;
+    let mut hi = lo;
+    for p in via.iter().copied().chain([a + u * t_hi]) {
+        lo = GridPoint::new(lo.x.min(p.x), lo.y.min(p.y));
+        hi = GridPoint::new(hi.x.max(p.x), hi.y.max(p.y));
+    }
+    let c0 = (lo.x - reach).floor().max(0.0) as usize;
+    let c1 = ((hi.x + reach).ceil().max(0.0) as usize).min(grid_w);
+    let r0 = (lo.y - reach).floor().max(0.0) as usize;
+    let r1 = ((hi.y + reach).ceil().max(0.0) as usize).min(grid_h);
+    for row in r0..r1 {
+        for col in c0..c1 {
+            let c = Cell::new(row, col);
+            let q = cell_center(c);
+            let old = u16::from(sample_reaches(a, b, q, reach));
+            let mut new = 0;
+            let mut prev = a;
+            for &p in via.iter().chain(std::iter::once(&b)) {
+                new += u16::from(sample_reaches(prev, p, q, reach));
+                prev = p;
+            }
+            if old != new {
+                f(c, old, new);
+            }
+        }
+    }
+}
+
+/// Whether replacing `a → b` by `a → via… → b` leaves a coverable cell
+/// that only `a → b` reaches out of reach.
+fn uncovers(
+    d: &Detours<'_>,
+    count: &Grid<u16>,
+    a: GridPoint,
+    via: &[GridPoint],
+    b: GridPoint,
+) -> bool {
+    let mut lost = false;
+    changed_cells(
+        count.width(),
+        count.height(),
+        a,
+        via,
+        b,
+        d.reach,
+        |c, old, new| {
+            lost |= new == 0 && old == 1 && count[c] == 1 && d.coverable[c];
+        },
+    );
+    lost
+}
+
+/// Where a detour from `a → b` to the cell centre `m` may put its vertex:
+/// the point of `m`'s reach disc nearest the segment first, then the
+/// plannable cell centres within reach of `m`, nearest the segment first.
+fn candidates(d: &Detours<'_>, a: GridPoint, b: GridPoint, m: GridPoint) -> Vec<GridPoint> {
+    let mut out = Vec::new();
+    let ab = b - a;
+    let len2 = ab.norm_squared();
+    let t = if len2 > 0.0 {
+        ((m - a).dot(&ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let foot = a + ab * t;
+    let off = foot - m;
+    let r = d.reach - 1e-6;
+    if off.norm() > 1e-9 {
+        let p = m + off * (r / off.norm());
+        if cell_of(d.plannable, p).is_some_and(|c| d.plannable[c]) {
+            out.push(p);
+        }
+    }
+    let k = d.reach.ceil() as isize;
+    let (mr, mc) = ((m.y - 0.5) as isize, (m.x - 0.5) as isize);
+    let mut cells: Vec<(f64, GridPoint)> = Vec::new();
+    for dr in -k..=k {
+        for dc in -k..=k {
+            let (rr, cc) = (mr + dr, mc + dc);
+            if rr < 0 || cc < 0 {
+                continue;
+            }
+            let c = Cell::new(rr as usize, cc as usize);
+            if d.plannable.get(c).copied() != Some(true) {
+                continue;
+            }
+            let q = cell_center(c);
+            if (q - m).norm() <= d.reach {
+                cells.push((segment_distance(a, b, q), q));
+            }
+        }
+    }
+    cells.sort_by(|x, y| x.0.total_cmp(&y.0));
+    out.extend(cells.into_iter().take(6).map(|(_, q)| q));
+    out
+}
+
+/// Estimated seconds added by making `via` vertices between `a` and its
+/// successor.
+fn detour_cost(path: &Linked, a: usize, via: &[GridPoint], t: &TimeModel) -> f64 {
+    let b = path.next[a];
+    let (pa, pb) = (path.pts[a], path.pts[b]);
+    let mut length = -(pb - pa).norm();
+    let mut rotation = 0.0;
+    let mut prev = pa;
+    let mut heading: Option<Vector> = (path.prev[a] != END).then(|| pa - path.pts[path.prev[a]]);
+    if let Some(u) = heading {
+        rotation -= heading_change(u, pb - pa);
+    }
+    for &p in via.iter().chain(std::iter::once(&pb)) {
+        let v = p - prev;
+        length += v.norm();
+        if let Some(u) = heading {
+            rotation += heading_change(u, v);
+        }
+        heading = Some(v);
+        prev = p;
+    }
+    if path.next[b] != END {
+        let v = path.pts[path.next[b]] - pb;
+        if let Some(u) = heading {
+            rotation += heading_change(u, v);
+        }
+        rotation -= heading_change(pb - pa, v);
+    }
+    t.time(length, rotation)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use oxcover_grid::footprint::for_each_sample;
+    use proptest::prelude::*;
+
+    fn mask(rows: &[&str]) -> Grid<bool> {
+        oxcover_grid::io::ascii_mask(rows).expect("valid map")
+    }
+
+    fn time() -> TimeModel {
+        TimeModel {
+            linear_speed: 6.0,
+            angular_speed: 0.52,
+        }
+    }
+
+    /// Cells within `r` of one of the contract's samples of `pts`.
+    fn sampled(w: usize, h: usize, pts: &[GridPoint], r: f64) -> Grid<bool> {
+        let mut g = Grid::new(w, h, false);
+        for_each_sample(pts, 0.25, |p| {
+            for c in Grid::<bool>::new(w, h, false).cells() {
+                if (cell_center(c) - p).norm() <= r {
+                    g[c] = true;
+                }
+            }
+        });
+        g
+    }
+
+    #[test]
+    fn linked_insertions_keep_order() {
+        let pts: Vec<GridPoint> = (0..4).map(|i| GridPoint::new(f64::from(i), 0.0)).collect();
+        let mut l = Linked::new(&pts);
+        let id = l.insert_after(1, GridPoint::new(1.5, 1.0));
+        l.insert_after(id, GridPoint::new(1.7, 1.0));
+        l.insert_after(0, GridPoint::new(0.5, 1.0));
+        let xs: Vec<f64> = l.points().iter().map(|p| p.x).collect();
+        assert_eq!(xs, vec![0.0, 0.5, 1.0, 1.5, 1.7, 2.0, 3.0]);
+    }
+
+    /// A lane along the middle of a room three rows wide, reach one cell:
+    /// the row below is covered, the nook above the lane's middle is not;
+    /// one V detour reaches it, the lane's ends stay where they were.
+    #[test]
+    fn a_nook_gets_one_v_detour() {
+        let plannable = mask(&[
+            "##########.##########",
+            ".....................",
+            ".....................",
+        ]);
+        let coverable = plannable.clone();
+        let path = vec![GridPoint::new(0.5, 2.0), GridPoint::new(20.5, 2.0)];
+        let d = Detours {
+            plannable: &plannable,
+            coverable: &coverable,
+            reach: 1.0,
+            search: 2.0,
+            time: time(),
+        };
+        let (out, n) = insert_detours(&path, &d);
+        assert_eq!(n, 1, "{out:?}");
+        assert_eq!(out.first(), path.first());
+        assert_eq!(out.last(), path.last());
+        // The nook (row 0, column 10) is within reach of a sample now.
+        let covered = sampled(21, 3, &out, 1.0);
+        assert!(covered[Cell::new(0, 10)], "{out:?}");
+        // Nothing the lane covered is lost.
+        let before = sampled(21, 3, &path, 1.0);
+        for c in before.true_cells() {
+            assert!(covered[c], "{c:?} lost: {out:?}");
+        }
+        // Short and gentle: less than half a turn added in all.
+        let turned: f64 = out
+            .windows(3)
+            .map(|w| heading_change(w[1] - w[0], w[2] - w[1]))
+            .sum();
+        assert!(turned < std::f64::consts::FRAC_PI_2, "{turned}: {out:?}");
+    }
+
+    /// A cell no clear detour reaches is left as it is.
+    #[test]
+    fn an_unreachable_cell_is_left() {
+        let plannable = mask(&[".....", "#####", "....."]);
+        let mut coverable = plannable.clone();
+        coverable[Cell::new(2, 2)] = true;
+        let path = vec![GridPoint::new(0.5, 0.5), GridPoint::new(4.5, 0.5)];
+        let d = Detours {
+            plannable: &plannable,
+            coverable: &coverable,
+            reach: 1.0,
+            search: 3.0,
+            time: time(),
+        };
+        let (out, n) = insert_detours(&path, &d);
+        assert_eq!((out, n), (path, 0));
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+        /// The sample test agrees with the contract's sampler.
+        #[test]
+        fn sample_reaches_matches_the_sampler(
+            ax in 0.0..20.0f64, ay in 0.0..20.0f64, bx in 0.0..20.0f64, by in 0.0..20.0f64,
+            qx in 0.0..20.0f64, qy in 0.0..20.0f64, r in 0.3..4.0f64,
+        ) {
+            let (a, b, q) = (GridPoint::new(ax, ay), GridPoint::new(bx, by), GridPoint::new(qx, qy));
+            let mut near = f64::INFINITY;
+            for_each_sample(&[a, b], 0.25, |p| near = near.min((p - q).norm()));
+            // Away from the boundary case, both agree.
+            prop_assume!((near - r).abs() > 1e-9);
+            prop_assert_eq!(sample_reaches(a, b, q, r), near <= r);
+        }
+
+        /// On random rooms with specks, detours keep the path clear, its
+        /// ends, and everything it covered; they only add coverage.
+        #[test]
+        fn detours_only_add_coverage(seed in 0u64..1_000, reach in 1.0..3.0f64) {
+            let (w, h) = (24usize, 16usize);
+            let mut rng = seed;
+            let mut next = || {
+                rng = rng.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+                (rng >> 33) as usize
+            };
+            let mut plannable = Grid::new(w, h, true);
+            for _ in 0..12 {
+                let c = Cell::new(next() % h, next() % w);
+                plannable[c] = false;
+            }
+            // Lanes along rows 2, 6, 10, 14 where clear, joined by straight links.
+            let mut path: Vec<GridPoint> = Vec::new();
+            for (k, row) in [2usize, 6, 10, 14].into_iter().enumerate() {
+                let y = row as f64 + 0.5;
+                let (x0, x1) = if k % 2 == 0 { (0.5, w as f64 - 0.5) } else { (w as f64 - 0.5, 0.5) };
+                path.push(GridPoint::new(x0, y));
+                path.push(GridPoint::new(x1, y));
+            }
+            // Keep the clear prefix.
+            let mut clear = vec![path[0]];
+            for p in path.iter().skip(1) {
+                if cell_of(&plannable, *p).is_none_or(|c| !plannable[c])
+                    || !segment_clear(&plannable, clear[clear.len() - 1], *p)
+                {
+                    break;
+                }
+                clear.push(*p);
+            }
+            prop_assume!(clear.len() >= 2 && cell_of(&plannable, clear[0]).is_some_and(|c| plannable[c]));
+            let coverable = Grid::new(w, h, true);
+            let d = Detours { plannable: &plannable, coverable: &coverable, reach, search: 2.0 * reach, time: time() };
+            let (out, _) = insert_detours(&clear, &d);
+            prop_assert_eq!(out.first(), clear.first());
+            prop_assert_eq!(out.last(), clear.last());
+            for s in out.windows(2) {
+                prop_assert!(segment_clear(&plannable, s[0], s[1]), "{:?}", s);
+            }
+            let before = sampled(w, h, &clear, reach);
+            let after = sampled(w, h, &out, reach);
+            for c in before.true_cells() {
+                prop_assert!(after[c], "{:?} lost", c);
+            }
+            prop_assert!(after.count_true() >= before.count_true());
+        }
+    }
+}
