@@ -123,14 +123,18 @@ fn mean(v: &[f64]) -> f64 {
 }
 
 /// Runs the task; with `only` (comma-separated planner names), just those
-/// planners, and the tables are printed instead of written.
+/// planners, and with `filter`, just the maps whose name contains it: then
+/// the tables are printed instead of written.
 ///
 /// # Errors
 /// When the shared maps are missing, a picture or the page cannot be
 /// written, or a complete planner fails or collides.
-pub fn run(only: Option<&str>) -> anyhow::Result<()> {
+pub fn run(only: Option<&str>, filter: Option<&str>) -> anyhow::Result<()> {
     let maps = match crate::floor_plans() {
-        Ok(m) => m,
+        Ok(m) => m
+            .into_iter()
+            .filter(|(n, _)| filter.is_none_or(|f| n.contains(f)))
+            .collect::<Vec<_>>(),
         Err(e) => {
             eprintln!("efficiency: skipped ({e})");
             return Ok(());
@@ -153,10 +157,15 @@ pub fn run(only: Option<&str>) -> anyhow::Result<()> {
             target_turns: None,
         },
     ];
+    let only = if filter.is_some() && only.is_none() {
+        Some("")
+    } else {
+        only
+    };
     let names: Vec<&'static str> = planners()
         .into_iter()
         .filter(|p| p.complete)
-        .filter(|p| only.is_none_or(|o| o.split(',').any(|n| n.trim() == p.name)))
+        .filter(|p| only.is_none_or(|o| o.is_empty() || o.split(',').any(|n| n.trim() == p.name)))
         .map(|p| p.name)
         .collect();
     let docs = crate::root().join("docs");

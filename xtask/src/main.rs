@@ -55,6 +55,9 @@ enum Task {
         /// of writing the page.
         #[arg(long)]
         planners: Option<String>,
+        /// Only maps whose name contains this text (prints, as `--planners`).
+        #[arg(long)]
+        filter: Option<String>,
     },
     /// Feed every input parser mutated bytes of the fixture files; fail on a
     /// panic or a slow input (saved under target/fuzz/findings).
@@ -133,7 +136,9 @@ fn main() -> anyhow::Result<()> {
             xtask::acceptance::run(filter.as_deref(), planners.as_deref())
         }
         Task::Reproduce { name } => xtask::reproduce::run(&name),
-        Task::Efficiency { planners } => xtask::efficiency::run(planners.as_deref()),
+        Task::Efficiency { planners, filter } => {
+            xtask::efficiency::run(planners.as_deref(), filter.as_deref())
+        }
         Task::Fuzz {
             seconds,
             seed,

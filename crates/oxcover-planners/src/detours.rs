@@ -238,6 +238,7 @@ pub(crate) fn insert_detours(points: &[GridPoint], d: &Detours<'_>) -> (Vec<Grid
         .filter(|&c| count[c] == 0)
         .collect();
     let mut near = Vec::new();
+    let mut options: Vec<(f64, usize, Via)> = Vec::new();
     let mut inserted = 0;
     for m in missed {
         if count[m] > 0 {
@@ -245,38 +246,66 @@ pub(crate) fn insert_detours(points: &[GridPoint], d: &Detours<'_>) -> (Vec<Grid
         }
         let mc = cell_center(m);
         buckets.near(mc, d.search + d.reach, &mut near);
-        // (cost, segment, new vertices)
-        let mut options: Vec<(f64, usize, Vec<GridPoint>)> = Vec::new();
-        for &a in &near {
-            let b = path.next[a];
-            if b == END {
-                continue;
+        // The nearest point of the reach disc first; the plannable cells
+        // within reach only where no detour through it is accepted.
+        let mut disc: Option<Vec<GridPoint>> = None;
+        let mut accepted = None;
+        for with_cells in [false, true] {
+            if with_cells {
+                disc = Some(reach_disc(d, mc));
             }
-            let (pa, pb) = (path.pts[a], path.pts[b]);
-            if segment_distance(pa, pb, mc) > d.search + d.reach {
-                continue;
-            }
-            for p in candidates(d, pa, pb, mc) {
-                for via in shapes(pa, pb, p, d.reach) {
-                    options.push((detour_cost(&path, a, &via, &d.time), a, via));
+            options.clear();
+            for &a in &near {
+                let b = path.next[a];
+                if b == END {
+                    continue;
+                }
+                let (pa, pb) = (path.pts[a], path.pts[b]);
+                if segment_distance(pa, pb, mc) > d.search + d.reach {
+                    continue;
+                }
+                for p in candidates(d, pa, pb, mc, disc.as_deref_mut()) {
+                    for k in 0..SHAPES.len() {
+                        if let Some(via) = shape(pa, pb, p, d.reach, k) {
+                            options.push((detour_cost(&path, a, via.points(), &d.time), a, via));
+                        }
+                    }
                 }
             }
+            let tried = options.len().min(TRIED);
+            if options.len() > tried {
+                options.select_nth_unstable_by(tried, |x, y| x.0.total_cmp(&y.0));
+            }
+            options[..tried].sort_by(|x, y| x.0.total_cmp(&y.0));
+            accepted = options[..tried].iter().find(|(_, a, via)| {
+                let (pa, pb) = (path.pts[*a], path.pts[path.next[*a]]);
+                clear_through(d.plannable, pa, via.points(), pb)
+                    && !uncovers(d, &count, pa, via.points(), pb)
+            });
+            if accepted.is_some() {
+                break;
+            }
         }
-        options.sort_by(|x, y| x.0.total_cmp(&y.0));
-        let accepted = options.into_iter().take(12).find(|(_, a, via)| {
-            let (pa, pb) = (path.pts[*a], path.pts[path.next[*a]]);
-            clear_through(d.plannable, pa, via, pb) && !uncovers(d, &count, pa, via, pb)
-        });
-        let Some((_, a, via)) = accepted else {
+        let Some(&(_, a, via)) = accepted else {
             continue;
         };
+        let via = via.points();
         let b = path.next[a];
         let (pa, pb) = (path.pts[a], path.pts[b]);
-        changed_cells(w, h, pa, &via, pb, d.reach, |c, old, new| {
-            count[c] = (count[c] + new).saturating_sub(old);
-        });
+        changed_cells(
+            (w, h),
+            pa,
+            via,
+            pb,
+            d.reach,
+            |_| true,
+            |c, old, new| {
+                count[c] = (count[c] + new).saturating_sub(old);
+                true
+            },
+        );
         let mut prev = (a, pa);
-        for &p in &via {
+        for &p in via {
             let id = path.insert_after(prev.0, p);
             buckets.add(prev.0, prev.1, p);
             prev = (id, p);
@@ -287,40 +316,60 @@ pub(crate) fn insert_detours(points: &[GridPoint], d: &Detours<'_>) -> (Vec<Grid
     (path.points(), inserted)
 }
 
-/// The vertex sequences of a detour through `p` off `a → b`: `p` alone,
-/// and V shapes leaving and rejoining the segment a few reaches either
-/// side of `p`'s foot (a long lane keeps most of its line).
-fn shapes(a: GridPoint, b: GridPoint, p: GridPoint, reach: f64) -> Vec<Vec<GridPoint>> {
+/// The new vertices of a detour (at most three).
+#[derive(Clone, Copy, Debug)]
+struct Via {
+    pts: [GridPoint; 3],
+    len: usize,
+}
+
+impl Via {
+    fn points(&self) -> &[GridPoint] {
+        &self.pts[..self.len]
+    }
+}
+
+/// Shapes of a detour: `p` alone, or a V leaving and rejoining the
+/// segment this many reaches either side of `p`'s foot.
+const SHAPES: [f64; 4] = [0.0, 1.0, 2.0, 4.0];
+
+/// The vertices of detour shape `SHAPES[k]` through `p` off `a → b`;
+/// `None` where the shape does not apply: `p` alone bends a long segment
+/// as a whole (it moves all of it), and a V wider than the segment is
+/// `p` alone.
+fn shape(a: GridPoint, b: GridPoint, p: GridPoint, reach: f64, k: usize) -> Option<Via> {
     let ab = b - a;
     let len = ab.norm();
-    // Bending a long segment as a whole moves all of it: only V shapes.
-    let mut out = if len <= 8.0 * reach {
-        vec![vec![p]]
-    } else {
-        Vec::new()
+    let mut via = Via {
+        pts: [p; 3],
+        len: 0,
     };
+    if SHAPES[k] == 0.0 {
+        via.len = 1;
+        return (len <= 8.0 * reach).then_some(via);
+    }
     if len < 1e-9 {
-        return out;
+        return None;
     }
     let u = ab / len;
     let t = (p - a).dot(&u).clamp(0.0, len);
-    for k in [1.0, 2.0, 4.0] {
-        let span = k * reach;
-        let (t1, t2) = (t - span, t + span);
-        if t1 <= 0.0 && t2 >= len {
-            continue;
-        }
-        let mut via = Vec::with_capacity(3);
-        if t1 > 0.0 {
-            via.push(a + u * t1);
-        }
-        via.push(p);
-        if t2 < len {
-            via.push(a + u * t2);
-        }
-        out.push(via);
+    let span = SHAPES[k] * reach;
+    let (t1, t2) = (t - span, t + span);
+    if t1 <= 0.0 && t2 >= len {
+        return None;
     }
-    out
+    let mut push = |q: GridPoint| {
+        via.pts[via.len] = q;
+        via.len += 1;
+    };
+    if t1 > 0.0 {
+        push(a + u * t1);
+    }
+    push(p);
+    if t2 < len {
+        push(a + u * t2);
+    }
+    Some(via)
 }
 
 /// Whether `a → via… → b` is clear.
@@ -335,19 +384,20 @@ fn clear_through(mask: &Grid<bool>, a: GridPoint, via: &[GridPoint], b: GridPoin
     true
 }
 
-/// Calls `f(cell, old, new)` for every cell whose coverage changes when
+/// Calls `f(cell, old, new)` for every cell `want` accepts whose coverage
+/// changes (until `f` returns `false`) when
 /// `a → b` is replaced by `a → via… → b`: `old` is 1 when `a → b` reaches
 /// it, `new` the number of new pieces that do. Where `via` starts or ends
 /// on the segment, the pieces before and after coincide with it, so only
 /// the box round the bent stretch (widened by `reach`) is looked at.
 fn changed_cells(
-    grid_w: usize,
-    grid_h: usize,
+    (grid_w, grid_h): (usize, usize),
     a: GridPoint,
     via: &[GridPoint],
     b: GridPoint,
     reach: f64,
-    mut f: impl FnMut(Cell, u16, u16),
+    want: impl Fn(Cell) -> bool,
+    mut f: impl FnMut(Cell, u16, u16) -> bool,
 ) {
     let ab = b - a;
     let len = ab.norm();
@@ -384,6 +434,9 @@ fn changed_cells(
     for row in r0..r1 {
         for col in c0..c1 {
             let c = Cell::new(row, col);
+            if !want(c) {
+                continue;
+            }
             let q = cell_center(c);
             let old = u16::from(sample_reaches(a, b, q, reach));
             let mut new = 0;
@@ -392,8 +445,8 @@ fn changed_cells(
                 new += u16::from(sample_reaches(prev, p, q, reach));
                 prev = p;
             }
-            if old != new {
-                f(c, old, new);
+            if old != new && !f(c, old, new) {
+                return;
             }
         }
     }
@@ -409,44 +462,20 @@ fn uncovers(
     b: GridPoint,
 ) -> bool {
     let mut lost = false;
-    changed_cells(
-        count.width(),
-        count.height(),
-        a,
-        via,
-        b,
-        d.reach,
-        |c, old, new| {
-            lost |= new == 0 && old == 1 && count[c] == 1 && d.coverable[c];
-        },
-    );
+    let (w, h) = (count.width(), count.height());
+    let only_here = |c: Cell| count[c] == 1 && d.coverable[c];
+    changed_cells((w, h), a, via, b, d.reach, only_here, |_, old, new| {
+        lost = new == 0 && old == 1;
+        !lost
+    });
     lost
 }
 
-/// Where a detour from `a → b` to the cell centre `m` may put its vertex:
-/// the point of `m`'s reach disc nearest the segment first, then the
-/// plannable cell centres within reach of `m`, nearest the segment first.
-fn candidates(d: &Detours<'_>, a: GridPoint, b: GridPoint, m: GridPoint) -> Vec<GridPoint> {
+/// The centres of the plannable cells within reach of `m`.
+fn reach_disc(d: &Detours<'_>, m: GridPoint) -> Vec<GridPoint> {
+    let k = d.reach.ceil() as isize + 1;
+    let (mr, mc) = ((m.y - 0.5).round() as isize, (m.x - 0.5).round() as isize);
     let mut out = Vec::new();
-    let ab = b - a;
-    let len2 = ab.norm_squared();
-    let t = if len2 > 0.0 {
-        ((m - a).dot(&ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let foot = a + ab * t;
-    let off = foot - m;
-    let r = d.reach - 1e-6;
-    if off.norm() > 1e-9 {
-        let p = m + off * (r / off.norm());
-        if cell_of(d.plannable, p).is_some_and(|c| d.plannable[c]) {
-            out.push(p);
-        }
-    }
-    let k = d.reach.ceil() as isize;
-    let (mr, mc) = ((m.y - 0.5) as isize, (m.x - 0.5) as isize);
-    let mut cells: Vec<(f64, GridPoint)> = Vec::new();
     for dr in -k..=k {
         for dc in -k..=k {
             let (rr, cc) = (mr + dr, mc + dc);
@@ -459,12 +488,57 @@ fn candidates(d: &Detours<'_>, a: GridPoint, b: GridPoint, m: GridPoint) -> Vec<
             }
             let q = cell_center(c);
             if (q - m).norm() <= d.reach {
-                cells.push((segment_distance(a, b, q), q));
+                out.push(q);
             }
         }
     }
-    cells.sort_by(|x, y| x.0.total_cmp(&y.0));
-    out.extend(cells.into_iter().take(6).map(|(_, q)| q));
+    out
+}
+
+/// Plannable cell centres tried per segment, besides the nearest point.
+const CELL_CANDIDATES: usize = 6;
+/// Cheapest detours checked per missed cell.
+const TRIED: usize = 12;
+
+/// Where a detour from `a → b` to the cell centre `m` may put its vertex:
+/// the point of `m`'s reach disc nearest the segment, or (given `disc`,
+/// the plannable cell centres within reach of `m`, reordered here) those
+/// nearest the segment.
+fn candidates(
+    d: &Detours<'_>,
+    a: GridPoint,
+    b: GridPoint,
+    m: GridPoint,
+    disc: Option<&mut [GridPoint]>,
+) -> Vec<GridPoint> {
+    let mut out = Vec::with_capacity(CELL_CANDIDATES + 1);
+    let ab = b - a;
+    let len2 = ab.norm_squared();
+    let t = if len2 > 0.0 {
+        ((m - a).dot(&ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let Some(disc) = disc else {
+        let off = a + ab * t - m;
+        let r = d.reach - 1e-6;
+        if off.norm() > 1e-9 {
+            let p = m + off * (r / off.norm());
+            if cell_of(d.plannable, p).is_some_and(|c| d.plannable[c]) {
+                out.push(p);
+            }
+        }
+        return out;
+    };
+    let by_distance = |x: &GridPoint, y: &GridPoint| {
+        segment_distance(a, b, *x).total_cmp(&segment_distance(a, b, *y))
+    };
+    let n = disc.len().min(CELL_CANDIDATES);
+    if disc.len() > n {
+        disc.select_nth_unstable_by(n, by_distance);
+    }
+    disc[..n].sort_by(by_distance);
+    out.extend_from_slice(&disc[..n]);
     out
 }
 

@@ -53,6 +53,7 @@
 
 use std::f64::consts::PI;
 
+use oxcover_distance::Wavefront;
 use oxcover_grid::edt::center_distance_sq;
 use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear, segment_distance};
 use oxcover_grid::{Cell, Grid};
@@ -207,7 +208,7 @@ fn plan_lanes(
     for c in &chains {
         nodes.push(Node::Chain(c));
     }
-    let order = order_nodes(&nodes, cell_center(start), &cell_time);
+    let order = order_nodes(&nodes, cell_center(start), plannable, &cell_time);
     let loop_tolerance = (tool / 2.0).clamp(LOOP_TOLERANCE.0, LOOP_TOLERANCE.1);
 
     let mut path = PathBuilder::new(plannable, start);
@@ -819,14 +820,119 @@ impl Node<'_> {
     }
 }
 
+/// Transit seconds between the ends of the nodes, with the detour walls
+/// force: the straight-line time times the ratio of the 4-connected
+/// shortest route to the Manhattan distance (1 where a monotone staircase
+/// is clear, more where walls are in the way). One breadth-first search per
+/// distinct exit point; above `TRANSIT_BUDGET` cell visits (large regions
+/// with many nodes) straight lines only.
+struct Transits {
+    /// Point ids of each node's option: (entry, exit).
+    ids: Vec<Vec<(usize, usize)>>,
+    points: Vec<GridPoint>,
+    /// Detour ratio from every point to every point (row-major), if
+    /// measured.
+    ratio: Option<Vec<f32>>,
+    speed: f64,
+}
+
+/// Most cell visits the transit table may cost (points × plannable cells).
+const TRANSIT_BUDGET: f64 = 6e7;
+
+impl Transits {
+    fn new(nodes: &[Node<'_>], start: GridPoint, plannable: &Grid<bool>, t: &TimeModel) -> Self {
+        let mut points: Vec<GridPoint> = Vec::new();
+        let mut index: std::collections::HashMap<(u64, u64), usize> =
+            std::collections::HashMap::new();
+        let mut id = |p: GridPoint, points: &mut Vec<GridPoint>| {
+            *index
+                .entry((p.x.to_bits(), p.y.to_bits()))
+                .or_insert_with(|| {
+                    points.push(p);
+                    points.len() - 1
+                })
+        };
+        id(start, &mut points);
+        let ids: Vec<Vec<(usize, usize)>> = nodes
+            .iter()
+            .map(|n| {
+                (0..n.options())
+                    .map(|k| {
+                        let (a, b) = n.ends(k);
+                        (id(a, &mut points), id(b, &mut points))
+                    })
+                    .collect()
+            })
+            .collect();
+        let n = points.len();
+        let cells = plannable.count_true() as f64;
+        let ratio = (n as f64 * cells <= TRANSIT_BUDGET && n * n <= 16_000_000).then(|| {
+            let mut wave = Wavefront::new(plannable);
+            let at: Vec<Option<Cell>> = points
+                .iter()
+                .map(|&p| cell_of(plannable, p).filter(|&c| plannable[c]))
+                .collect();
+            let mut r = vec![1.0f32; n * n];
+            for i in 0..n {
+                let Some(a) = at[i] else { continue };
+                wave.reset();
+                wave.propagate(&[a]);
+                for j in 0..n {
+                    let Some(b) = at[j] else { continue };
+                    let manhattan = a.row.abs_diff(b.row) + a.col.abs_diff(b.col);
+                    if manhattan == 0 {
+                        continue;
+                    }
+                    r[i * n + j] = match wave.distance(b) {
+                        Some(d) => (f64::from(d) / manhattan as f64) as f32,
+                        None => 1e6,
+                    };
+                }
+            }
+            r
+        });
+        Self {
+            ids,
+            points,
+            ratio,
+            speed: t.linear_speed,
+        }
+    }
+
+    /// Seconds from point `from` to point `to`.
+    fn between(&self, from: usize, to: usize) -> f64 {
+        let d = (self.points[to] - self.points[from]).norm() / self.speed;
+        match &self.ratio {
+            Some(r) => d * f64::from(r[from * self.points.len() + to]),
+            None => d,
+        }
+    }
+
+    /// Seconds from point `from` into `node` by option `k`.
+    fn entering(&self, from: usize, node: usize, k: usize) -> f64 {
+        self.between(from, self.ids[node][k].0)
+    }
+
+    /// The exit point of `node` by option `k`.
+    fn exit(&self, node: usize, k: usize) -> usize {
+        self.ids[node][k].1
+    }
+}
+
 /// Order and entry options of `nodes` from `start`, minimising estimated
-/// transit time (straight-line distance over v; a generalised TSP).
-fn order_nodes(nodes: &[Node<'_>], start: GridPoint, t: &TimeModel) -> Vec<(usize, usize)> {
+/// transit time ([`Transits`]; a generalised TSP).
+fn order_nodes(
+    nodes: &[Node<'_>],
+    start: GridPoint,
+    plannable: &Grid<bool>,
+    t: &TimeModel,
+) -> Vec<(usize, usize)> {
     let n = nodes.len();
     if n == 0 {
         return Vec::new();
     }
-    let cost = |p: GridPoint, q: GridPoint| (q - p).norm() / t.linear_speed;
+    let transits = Transits::new(nodes, start, plannable, t);
+    const START: usize = 0;
     // Nearest neighbour over every entry: the least cost, ties to the lower
     // node and option. Entries sit in buckets, searched ring by ring
     // outwards until no farther ring can hold a cheaper one (a full scan
@@ -840,6 +946,7 @@ fn order_nodes(nodes: &[Node<'_>], start: GridPoint, t: &TimeModel) -> Vec<(usiz
     let mut used = vec![false; n];
     let mut tour: Vec<(usize, usize)> = Vec::with_capacity(n);
     let mut here = start;
+    let mut here_id = START;
     for _ in 0..n {
         let mut best: Option<(f64, usize, usize)> = None;
         index.search(
@@ -847,8 +954,8 @@ fn order_nodes(nodes: &[Node<'_>], start: GridPoint, t: &TimeModel) -> Vec<(usiz
             &mut best,
             |best, cell| {
                 cell.retain(|e| !used[e.1.0]);
-                for &(q, (i, k)) in cell.iter() {
-                    let c = cost(here, q);
+                for &(_, (i, k)) in cell.iter() {
+                    let c = transits.entering(here_id, i, k);
                     if best.is_none_or(|b| (c, i, k) < b) {
                         *best = Some((c, i, k));
                     }
@@ -861,13 +968,14 @@ fn order_nodes(nodes: &[Node<'_>], start: GridPoint, t: &TimeModel) -> Vec<(usiz
         used[i] = true;
         tour.push((i, k));
         here = nodes[i].ends(k).1;
+        here_id = transits.exit(i, k);
     }
     // 2-opt: reversing a stretch drives its nodes backwards.
     let exit = |tour: &[(usize, usize)], i: usize| {
         if i == 0 {
-            start
+            START
         } else {
-            nodes[tour[i - 1].0].ends(tour[i - 1].1).1
+            transits.exit(tour[i - 1].0, tour[i - 1].1)
         }
     };
     // 2-opt is O(n²) per round: on large regions (a whole map of tiny
@@ -878,12 +986,14 @@ fn order_nodes(nodes: &[Node<'_>], start: GridPoint, t: &TimeModel) -> Vec<(usiz
         for i in 0..n {
             for j in i + 1..n {
                 let before_in = exit(&tour, i);
-                let (a_in, _) = nodes[tour[i].0].ends(tour[i].1);
-                let (_, b_out) = nodes[tour[j].0].ends(tour[j].1);
-                let after = tour.get(j + 1).map(|&(m, k)| nodes[m].ends(k).0);
-                let old = cost(before_in, a_in) + after.map_or(0.0, |q| cost(b_out, q));
+                let a_in = transits.ids[tour[i].0][tour[i].1].0;
+                let b_out = transits.exit(tour[j].0, tour[j].1);
+                let after = tour.get(j + 1).map(|&(m, k)| transits.ids[m][k].0);
+                let old = transits.between(before_in, a_in)
+                    + after.map_or(0.0, |q| transits.between(b_out, q));
                 // Reversed: enter at b's old exit, leave at a's old entry.
-                let new = cost(before_in, b_out) + after.map_or(0.0, |q| cost(a_in, q));
+                let new = transits.between(before_in, b_out)
+                    + after.map_or(0.0, |q| transits.between(a_in, q));
                 if new < old - 1e-9 {
                     tour[i..=j].reverse();
                     for e in &mut tour[i..=j] {
@@ -897,7 +1007,7 @@ fn order_nodes(nodes: &[Node<'_>], start: GridPoint, t: &TimeModel) -> Vec<(usiz
             break;
         }
     }
-    best_options(nodes, &mut tour, start, &cost);
+    best_options(nodes, &mut tour, &transits);
     tour
 }
 
@@ -921,24 +1031,21 @@ fn entry_buckets(entries: &[(GridPoint, usize, usize)]) -> Buckets<(usize, usize
 
 /// Chooses every node's option for the fixed order (exact: a shortest path
 /// through layers of options).
-fn best_options(
-    nodes: &[Node<'_>],
-    tour: &mut [(usize, usize)],
-    start: GridPoint,
-    cost: &impl Fn(GridPoint, GridPoint) -> f64,
-) {
+fn best_options(nodes: &[Node<'_>], tour: &mut [(usize, usize)], transits: &Transits) {
     let mut layers: Vec<Vec<(f64, usize)>> = Vec::with_capacity(tour.len());
     for (i, &(node, _)) in tour.iter().enumerate() {
         let m = nodes[node].options();
         let mut layer = Vec::with_capacity(m);
         for k in 0..m {
-            let entry = nodes[node].ends(k).0;
             let (c, from) = if i == 0 {
-                (cost(start, entry), 0)
+                (transits.entering(0, node, k), 0)
             } else {
                 let prev = tour[i - 1].0;
                 (0..layers[i - 1].len())
-                    .map(|q| (layers[i - 1][q].0 + cost(nodes[prev].ends(q).1, entry), q))
+                    .map(|q| {
+                        let out = transits.exit(prev, q);
+                        (layers[i - 1][q].0 + transits.entering(out, node, k), q)
+                    })
                     .min_by(|a, b| a.0.total_cmp(&b.0))
                     .unwrap_or((f64::INFINITY, 0))
             };
