@@ -59,7 +59,7 @@ use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear, seg
 use oxcover_grid::{Cell, Grid};
 
 use crate::buckets::Buckets;
-use crate::detours::{Detours, insert_detours};
+use crate::detours::{Detours, insert_detours, tighten};
 use crate::error::{Error, Result};
 use crate::metre_path::PathBuilder;
 use crate::planner::{Planner, PlannerOptions};
@@ -219,16 +219,20 @@ fn plan_lanes(
         }
     }
     // What the straightened loops and the lanes' ends pass just out of
-    // reach: covered by bending the path where that costs least.
+    // reach: covered by bending the path where that costs least (within
+    // five tool radii of a segment).
     let detours = Detours {
         plannable,
         coverable: input.coverable,
         // A hair inside the tool radius: the metrics measure in metres.
         reach: input.tool_cells - 1e-6,
-        search: 2.0 * tool,
+        search: 5.0 * tool,
         time: cell_time,
     };
     let (points, _) = insert_detours(path.points(), &detours);
+    // Then the vertices detours made unneeded go, and the rest move
+    // towards the line of their neighbours, where coverage allows.
+    let (points, _) = tighten(&points, &detours);
     path.replace(points);
     path.cover_leftovers(input.coarse, input.visit_radius())?;
     Ok(path.into_metres(&input.frame))
