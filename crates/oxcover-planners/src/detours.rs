@@ -91,6 +91,27 @@ impl Linked {
     }
 }
 
+/// How far a new vertex keeps from the cell edges (cells): a point on an
+/// edge lies in one cell here and may lie in its neighbour once written in
+/// metres.
+const EDGE_GAP: f64 = 1e-4;
+
+/// `p` moved off the cell edges it lies on (within [`EDGE_GAP`]), into the
+/// cell it is in.
+fn off_edges(p: GridPoint) -> GridPoint {
+    let pull = |v: f64| {
+        let f = v - v.floor();
+        if f < EDGE_GAP {
+            v.floor() + EDGE_GAP
+        } else if f > 1.0 - EDGE_GAP {
+            v.floor() + 1.0 - EDGE_GAP
+        } else {
+            v
+        }
+    };
+    GridPoint::new(pull(p.x), pull(p.y))
+}
+
 /// Absolute heading change (rad) from `u` to `v`; 0 when either is null.
 fn heading_change(u: Vector, v: Vector) -> f64 {
     if u.norm() < 1e-12 || v.norm() < 1e-12 {
@@ -386,7 +407,7 @@ pub(crate) fn tighten(points: &[GridPoint], d: &Detours<'_>) -> (Vec<GridPoint>,
             let foot = pu + ux * t;
             let mut moves: Vec<Option<GridPoint>> = vec![None];
             for f in RELOCATIONS {
-                moves.push(Some(pv + (foot - pv) * f));
+                moves.push(Some(off_edges(pv + (foot - pv) * f)));
             }
             for m in moves {
                 let mid: Vec<GridPoint> = m.into_iter().collect();
@@ -533,6 +554,7 @@ const SHAPES: [f64; 4] = [0.0, 1.0, 2.0, 4.0];
 fn shape(a: GridPoint, b: GridPoint, p: GridPoint, reach: f64, k: usize) -> Option<Via> {
     let ab = b - a;
     let len = ab.norm();
+    let p = off_edges(p);
     let mut via = Via {
         pts: [p; 3],
         len: 0,
@@ -552,7 +574,7 @@ fn shape(a: GridPoint, b: GridPoint, p: GridPoint, reach: f64, k: usize) -> Opti
         return None;
     }
     let mut push = |q: GridPoint| {
-        via.pts[via.len] = q;
+        via.pts[via.len] = off_edges(q);
         via.len += 1;
     };
     if t1 > 0.0 {
@@ -723,7 +745,7 @@ fn candidates(
     };
     let Some(disc) = disc else {
         let off = a + ab * t - m;
-        let r = d.reach - 1e-6;
+        let r = d.reach - 2.0 * EDGE_GAP;
         if off.norm() > 1e-9 {
             let p = m + off * (r / off.norm());
             if cell_of(d.plannable, p).is_some_and(|c| d.plannable[c]) {

@@ -1178,36 +1178,28 @@ mod exact {
         v.iter().map(|&(x, y)| Point::new(x, y)).collect()
     }
 
-    /// A corridor one cell wide: its contour, out along the cells pushed
-    /// to the west and east walls and back (no lane fits: the tool is
-    /// half a cell), ending at the start cell.
+    /// A corridor one cell wide: its contour, out to the east wall and
+    /// back (no lane fits: the tool is half a cell). The loop's trip to
+    /// the west wall first goes: the start cell's centre already covers
+    /// it, and tightening drops every vertex coverage does not need.
     #[test]
     fn a_corridor_is_driven_out_and_back() {
-        assert_eq!(
-            plan("......"),
-            pts(&[
-                (0.5, 0.5),
-                (0.05, 0.5),
-                (5.95, 0.5),
-                (0.05, 0.5),
-                (0.5, 0.5)
-            ])
-        );
+        assert_eq!(plan("......"), pts(&[(0.5, 0.5), (5.95, 0.5), (0.5, 0.5)]));
     }
 
-    /// Two rows: one loop through the four corners, 0.45 of a cell into
-    /// each corner cell, back to the start cell.
+    /// Two rows: one loop through the four corners, tightened: every
+    /// corner moved in as far as the cells' centres stay within half a
+    /// cell of the path (the tool), so the loop is a thin sliver through
+    /// the middle of the room and back to the start cell.
     #[test]
     fn a_two_row_room_is_one_loop_through_its_corners() {
         assert_eq!(
             plan("...\n..."),
             pts(&[
                 (0.5, 1.5),
-                (0.05, 1.95),
-                (2.95, 1.95),
-                (2.95, 0.05),
-                (0.05, 0.05),
-                (0.05, 1.95),
+                (2.46, 1.01),
+                (2.48, 0.98),
+                (0.39, 0.86),
                 (0.5, 1.5)
             ])
         );
@@ -1215,18 +1207,17 @@ mod exact {
 
     /// A ring round a two-cell block: every ring cell is on the outer
     /// contour, so the block's own contour is not traced again: one loop
-    /// through the four outer corners.
+    /// round the block, its corners tightened until the ring's cell
+    /// centres are just within half a cell of it.
     #[test]
     fn a_ring_is_one_loop() {
         assert_eq!(
             plan("....\n.##.\n...."),
             pts(&[
                 (0.5, 2.5),
-                (0.05, 2.95),
-                (3.95, 2.95),
-                (3.95, 0.05),
-                (0.05, 0.05),
-                (0.05, 2.95),
+                (3.43, 2.15),
+                (3.33, 0.96),
+                (0.58, 0.96),
                 (0.5, 2.5)
             ])
         );

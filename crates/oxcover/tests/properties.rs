@@ -166,3 +166,15 @@ fn lanes_ends_in_a_wanted_cell_off_centre() {
     let m = &out.evaluation.metrics;
     assert_eq!((m.coverage, m.collisions), (1.0, 0));
 }
+
+/// Found by the larger-map property (this session): a vertex that
+/// `lanes`' tightening moved half way to its neighbours' line landed
+/// exactly on a cell corner, inside a plannable cell in grid coordinates
+/// and in a blocked one once written in metres. New vertices now keep off
+/// the cell edges.
+#[test]
+fn lanes_keeps_new_vertices_off_cell_corners() {
+    let map = random_map(2, 48, 38, 9_660_396_979_406_156_120, 0.03);
+    let robot = DiscRobot::new(0.0, 2.065_166_521_517_309_4 * 0.03).unwrap();
+    check(&map, robot, "lanes", true).unwrap();
+}
