@@ -120,6 +120,9 @@ const WALL_PREFERENCE: f64 = 1.1;
 const EDGE_NUDGE: f64 = 1e-4;
 /// Most nodes the order's 2-opt runs on.
 const TWO_OPT_LIMIT: usize = 600;
+/// The cheapest lane angles (by their chains) whose order is planned to
+/// compare transits too.
+const ANGLES_ORDERED: usize = 3;
 /// Entry points tried per loop.
 const LOOP_ENTRIES: usize = 8;
 
@@ -179,7 +182,7 @@ fn plan_lanes(
         }
     };
     let mask_area = lane_mask.count_true() as f64;
-    let mut best: Option<(f64, Vec<Chain>)> = None;
+    let mut scored: Vec<(f64, Vec<Chain>)> = Vec::with_capacity(candidates.len());
     for (i, &theta) in candidates.iter().enumerate() {
         let (chains, step) = chains_at(plannable, &lane_mask, theta, spacing);
         let mut cost = chains
@@ -195,20 +198,27 @@ fn plan_lanes(
         if i >= 2 {
             cost *= WALL_PREFERENCE;
         }
-        if best.as_ref().is_none_or(|b| cost < b.0) {
-            best = Some((cost, chains));
+        scored.push((cost, chains));
+    }
+    // The cheapest few angles are compared with their transits too: the
+    // order of loops and chains from the start to the exit (a direction
+    // that leaves a door's stub as chains of its own, or ends its lanes
+    // far from the exit, costs there).
+    scored.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let exit = input.exit.filter(|&c| plannable.is_set(c)).map(cell_center);
+    let mut best: Option<(f64, Vec<Chain>, Tour)> = None;
+    for (cost, chains) in scored.into_iter().take(ANGLES_ORDERED) {
+        let mut nodes: Vec<Node> = loops.iter().map(Node::Loop).collect();
+        nodes.extend(chains.iter().map(Node::Chain));
+        let (order, transit) = order_nodes(&nodes, cell_center(start), exit, plannable, &cell_time);
+        let total = cost + transit;
+        if best.as_ref().is_none_or(|b| total < b.0) {
+            best = Some((total, chains, order));
         }
     }
-    let chains = best.map(|b| b.1).unwrap_or_default();
-
-    let mut nodes: Vec<Node> = Vec::new();
-    for l in &loops {
-        nodes.push(Node::Loop(l));
-    }
-    for c in &chains {
-        nodes.push(Node::Chain(c));
-    }
-    let order = order_nodes(&nodes, cell_center(start), plannable, &cell_time);
+    let (chains, order) = best.map(|b| (b.1, b.2)).unwrap_or_default();
+    let mut nodes: Vec<Node> = loops.iter().map(Node::Loop).collect();
+    nodes.extend(chains.iter().map(Node::Chain));
     let loop_tolerance = (tool / 2.0).clamp(LOOP_TOLERANCE.0, LOOP_TOLERANCE.1);
 
     let mut path = PathBuilder::new(plannable, start);
@@ -833,6 +843,8 @@ impl Node<'_> {
 struct Transits {
     /// Point ids of each node's option: (entry, exit).
     ids: Vec<Vec<(usize, usize)>>,
+    /// Point id of where the path should end, if given.
+    end: Option<usize>,
     points: Vec<GridPoint>,
     /// Detour ratio from every point to every point (row-major), if
     /// measured.
@@ -844,7 +856,13 @@ struct Transits {
 const TRANSIT_BUDGET: f64 = 6e7;
 
 impl Transits {
-    fn new(nodes: &[Node<'_>], start: GridPoint, plannable: &Grid<bool>, t: &TimeModel) -> Self {
+    fn new(
+        nodes: &[Node<'_>],
+        start: GridPoint,
+        end: Option<GridPoint>,
+        plannable: &Grid<bool>,
+        t: &TimeModel,
+    ) -> Self {
         let mut points: Vec<GridPoint> = Vec::new();
         let mut index: std::collections::HashMap<(u64, u64), usize> =
             std::collections::HashMap::new();
@@ -857,6 +875,7 @@ impl Transits {
                 })
         };
         id(start, &mut points);
+        let end = end.map(|e| id(e, &mut points));
         let ids: Vec<Vec<(usize, usize)>> = nodes
             .iter()
             .map(|n| {
@@ -897,6 +916,7 @@ impl Transits {
         });
         Self {
             ids,
+            end,
             points,
             ratio,
             speed: t.linear_speed,
@@ -921,21 +941,31 @@ impl Transits {
     fn exit(&self, node: usize, k: usize) -> usize {
         self.ids[node][k].1
     }
+
+    /// Seconds from point `from` to where the path should end (0 when
+    /// that is not given).
+    fn finishing(&self, from: usize) -> f64 {
+        self.end.map_or(0.0, |e| self.between(from, e))
+    }
 }
+
+/// Nodes in the order driven, each with its option.
+type Tour = Vec<(usize, usize)>;
 
 /// Order and entry options of `nodes` from `start`, minimising estimated
 /// transit time ([`Transits`]; a generalised TSP).
 fn order_nodes(
     nodes: &[Node<'_>],
     start: GridPoint,
+    end: Option<GridPoint>,
     plannable: &Grid<bool>,
     t: &TimeModel,
-) -> Vec<(usize, usize)> {
+) -> (Tour, f64) {
     let n = nodes.len();
     if n == 0 {
-        return Vec::new();
+        return (Vec::new(), 0.0);
     }
-    let transits = Transits::new(nodes, start, plannable, t);
+    let transits = Transits::new(nodes, start, end, plannable, t);
     const START: usize = 0;
     // Nearest neighbour over every entry: the least cost, ties to the lower
     // node and option. Entries sit in buckets, searched ring by ring
@@ -993,11 +1023,13 @@ fn order_nodes(
                 let a_in = transits.ids[tour[i].0][tour[i].1].0;
                 let b_out = transits.exit(tour[j].0, tour[j].1);
                 let after = tour.get(j + 1).map(|&(m, k)| transits.ids[m][k].0);
-                let old = transits.between(before_in, a_in)
-                    + after.map_or(0.0, |q| transits.between(b_out, q));
+                let onwards = |from: usize| match after {
+                    Some(q) => transits.between(from, q),
+                    None => transits.finishing(from),
+                };
+                let old = transits.between(before_in, a_in) + onwards(b_out);
                 // Reversed: enter at b's old exit, leave at a's old entry.
-                let new = transits.between(before_in, b_out)
-                    + after.map_or(0.0, |q| transits.between(a_in, q));
+                let new = transits.between(before_in, b_out) + onwards(a_in);
                 if new < old - 1e-9 {
                     tour[i..=j].reverse();
                     for e in &mut tour[i..=j] {
@@ -1011,8 +1043,8 @@ fn order_nodes(
             break;
         }
     }
-    best_options(nodes, &mut tour, &transits);
-    tour
+    let seconds = best_options(nodes, &mut tour, &transits);
+    (tour, seconds)
 }
 
 /// The entries `(point, node, option)` in buckets of about two each.
@@ -1034,8 +1066,8 @@ fn entry_buckets(entries: &[(GridPoint, usize, usize)]) -> Buckets<(usize, usize
 }
 
 /// Chooses every node's option for the fixed order (exact: a shortest path
-/// through layers of options).
-fn best_options(nodes: &[Node<'_>], tour: &mut [(usize, usize)], transits: &Transits) {
+/// through layers of options); returns the transit seconds of the result.
+fn best_options(nodes: &[Node<'_>], tour: &mut [(usize, usize)], transits: &Transits) -> f64 {
     let mut layers: Vec<Vec<(f64, usize)>> = Vec::with_capacity(tour.len());
     for (i, &(node, _)) in tour.iter().enumerate() {
         let m = nodes[node].options();
@@ -1057,14 +1089,22 @@ fn best_options(nodes: &[Node<'_>], tour: &mut [(usize, usize)], transits: &Tran
         }
         layers.push(layer);
     }
-    let Some(last) = layers.last() else { return };
+    let Some(last) = layers.last() else {
+        return 0.0;
+    };
+    let Some(&(last_node, _)) = tour.last() else {
+        return 0.0;
+    };
+    let total = |k: usize| last[k].0 + transits.finishing(transits.exit(last_node, k));
     let mut k = (0..last.len())
-        .min_by(|&a, &b| last[a].0.total_cmp(&last[b].0))
+        .min_by(|&a, &b| total(a).total_cmp(&total(b)))
         .unwrap_or(0);
+    let seconds = total(k);
     for i in (0..tour.len()).rev() {
         tour[i].1 = k;
         k = layers[i][k].1;
     }
+    seconds
 }
 
 #[cfg(test)]

@@ -80,5 +80,5 @@ pub use problem::{
     largest_region_start,
 };
 pub use registry::{build, find, registry};
-pub use room_tour::{RoomUnits, room_order};
+pub use room_tour::{ANY_UNIT, RoomUnits, room_order, unit_claims, unit_exits};
 pub use time::TimeModel;

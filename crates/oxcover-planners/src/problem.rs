@@ -168,12 +168,37 @@ impl CoverageProblem {
     /// [`Error::BadParameter`] when `mask` is not the map's size or `start`
     /// is not a plannable cell inside it.
     pub fn restricted(&self, mask: &Grid<bool>, start: Cell) -> Result<Self> {
+        self.restricted_claiming(mask, start, None)
+    }
+
+    /// [`CoverageProblem::restricted`], with only the cells set in `claim`
+    /// (the map's size) left to cover: room by room, a cell within reach of
+    /// two rooms is covered by the one that claims it.
+    ///
+    /// # Errors
+    /// As [`CoverageProblem::restricted`], and when `claim` is not the
+    /// map's size.
+    pub fn restricted_claiming(
+        &self,
+        mask: &Grid<bool>,
+        start: Cell,
+        claim: Option<&Grid<bool>>,
+    ) -> Result<Self> {
         let plannable = self.plannable();
         let (w, h) = (plannable.width(), plannable.height());
         if (mask.width(), mask.height()) != (w, h) {
             return Err(Error::BadParameter {
                 name: "region mask",
                 value: format!("{}x{}", mask.width(), mask.height()),
+                expected: "the map's size",
+            });
+        }
+        if let Some(c) = claim
+            && (c.width(), c.height()) != (w, h)
+        {
+            return Err(Error::BadParameter {
+                name: "claimed cells",
+                value: format!("{}x{}", c.width(), c.height()),
                 expected: "the map's size",
             });
         }
@@ -201,7 +226,9 @@ impl CoverageProblem {
         let inside = Grid::from_fn(cw, ch, |c| plannable[at(c)] && mask[at(c)]);
         let local_start = Cell::new(start.row - r0, start.col - c0);
         let reach = reachable(&inside, local_start);
-        let parent_coverable = Grid::from_fn(cw, ch, |c| self.cells.coverable[at(c)]);
+        let parent_coverable = Grid::from_fn(cw, ch, |c| {
+            self.cells.coverable[at(c)] && claim.is_none_or(|k| k[at(c)])
+        });
         let coverable = coverable_cells(&parent_coverable, &reach, self.tool_cells);
         let cells = Coverability {
             robot: self.cells.robot,
@@ -230,6 +257,17 @@ impl CoverageProblem {
         self.offset
     }
 
+    /// The original map's `cell` in this problem's cells, if inside it.
+    #[must_use]
+    pub fn from_map_cell(&self, cell: Cell) -> Option<Cell> {
+        let (r, c) = (
+            cell.row.checked_sub(self.offset.row)?,
+            cell.col.checked_sub(self.offset.col)?,
+        );
+        let local = Cell::new(r, c);
+        self.plannable().get(local).is_some().then_some(local)
+    }
+
     /// This problem's `cell` in the original map's cells.
     #[must_use]
     pub fn to_map_cell(&self, cell: Cell) -> Cell {
@@ -250,6 +288,7 @@ impl CoverageProblem {
             frame: self.frame,
             tool_cells: self.tool_cells,
             time: self.time,
+            exit: None,
         }
     }
 
@@ -439,6 +478,10 @@ pub struct PlannerInput<'a> {
     pub tool_cells: f64,
     /// Speeds to score choices with (estimated time, the objective).
     pub time: TimeModel,
+    /// Where the robot goes next, if known (room by room: the cell of this
+    /// room nearest the next room): a planner may end its path near it.
+    /// `None` from [`CoverageProblem::input`]; the pipeline sets it.
+    pub exit: Option<Cell>,
 }
 
 impl PlannerInput<'_> {

@@ -15,7 +15,7 @@
 //! dozen units, nearest neighbour with 2-opt and Or-opt beyond).
 
 use oxcover_decomp::merge_small_regions;
-use oxcover_distance::Wavefront;
+use oxcover_distance::{Wavefront, cidt};
 use oxcover_grid::{Cell, Grid};
 
 use crate::problem::CoverageProblem;
@@ -189,6 +189,82 @@ pub fn room_order(problem: &CoverageProblem, units: &RoomUnits) -> Vec<u32> {
         .collect()
 }
 
+/// The unit that covers each coverable cell (0 for the others; [`ANY_UNIT`]
+/// where no plannable cell is found within reach, which the definition
+/// of coverable rules out): a
+/// plannable cell's own unit; a cell beyond the plannable cells (the strip
+/// along walls) that of the nearest plannable cell within the tool's
+/// reach, ties to the lower unit. A cell next to a room cut is thus left
+/// to the unit on its side, not covered by both.
+#[must_use]
+pub fn unit_claims(problem: &CoverageProblem, units: &RoomUnits) -> Grid<u32> {
+    let coverable = &problem.cells().coverable;
+    // The coverable cells' own test: within the tool radius, with the
+    // grid's tolerance.
+    let tool = problem.tool_cells() + oxcover_grid::TOLERANCE_CELLS;
+    let k = tool.ceil() as isize;
+    let labels = &units.labels;
+    Grid::from_fn(coverable.width(), coverable.height(), |c| {
+        if !coverable[c] {
+            return 0;
+        }
+        if labels[c] != 0 {
+            return labels[c];
+        }
+        let mut best = (f64::INFINITY, 0u32);
+        for dr in -k..=k {
+            for dc in -k..=k {
+                let d2 = (dr * dr + dc * dc) as f64;
+                if d2 > tool * tool || d2 > best.0 {
+                    continue;
+                }
+                let (r, q) = (c.row as isize + dr, c.col as isize + dc);
+                if r < 0 || q < 0 {
+                    continue;
+                }
+                let Some(&l) = labels.get(Cell::new(r as usize, q as usize)) else {
+                    continue;
+                };
+                if l != 0 && (d2, l) < best {
+                    best = (d2, l);
+                }
+            }
+        }
+        // None found (cannot happen for a coverable cell): every unit.
+        if best.1 == 0 { ANY_UNIT } else { best.1 }
+    })
+}
+
+/// The claim of a cell every unit covers.
+pub const ANY_UNIT: u32 = u32::MAX;
+
+/// For each unit of `order` but the last, its plannable cell nearest the
+/// next unit (by 4-connected route over the plannable cells): where its
+/// plan had best end. `None` for the last unit, or when no route joins
+/// the two.
+#[must_use]
+pub fn unit_exits(
+    problem: &CoverageProblem,
+    units: &RoomUnits,
+    order: &[u32],
+) -> Vec<Option<Cell>> {
+    let plannable = problem.plannable();
+    let mut wave = Wavefront::new(plannable);
+    let mut exits = Vec::with_capacity(order.len());
+    for w in order.windows(2) {
+        let (here, next) = (w[0], w[1]);
+        let sources: Vec<Cell> = units
+            .labels
+            .cells()
+            .filter(|&c| units.labels[c] == next)
+            .collect();
+        let found = cidt(&mut wave, &sources, |c| units.labels[c] == here);
+        exits.push(found.map(|f| f.first()));
+    }
+    exits.push(None);
+    exits
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -219,5 +295,47 @@ mod tests {
         )
         .unwrap();
         assert_eq!(room_order(&p, &u), vec![2, 1]);
+    }
+
+    /// Two rooms joined by a door, a tool of 1.5 cells: every coverable
+    /// cell is claimed by the room of its nearest plannable cell, the door
+    /// column's neighbours by their own side; the exit of the first room
+    /// is its cell next to the door.
+    #[test]
+    fn claims_go_to_the_nearest_unit_and_exits_to_the_door() {
+        let text = "#########\n....#....\n.........\n....#....\n#########";
+        let (map, _) = parse_ascii(text).unwrap();
+        let free = map.free_mask();
+        let rooms = Grid::from_fn(9, 5, |c: Cell| if c.col <= 4 { 1 } else { 2 });
+        let u = RoomUnits::new(&free, &rooms, 1);
+        assert_eq!(u.count(), 2);
+        let p = CoverageProblem::new(
+            &map,
+            DiscRobot::new(0.0, 1.5).unwrap(),
+            Start::Cell(Cell::new(2, 0)),
+        )
+        .unwrap();
+        let claims = unit_claims(&p, &u);
+        for c in p.cells().coverable.true_cells() {
+            assert!(claims[c] == 1 || claims[c] == 2, "{c:?}: {}", claims[c]);
+            if u.labels[c] != 0 {
+                assert_eq!(claims[c], u.labels[c], "{c:?}");
+            }
+        }
+        assert_eq!(claims[Cell::new(1, 3)], 1);
+        assert_eq!(claims[Cell::new(1, 5)], 2);
+        let order = room_order(&p, &u);
+        assert_eq!(order, vec![1, 2]);
+        let exits = unit_exits(&p, &u, &order);
+        assert_eq!(exits, vec![Some(Cell::new(2, 4)), None]);
+        // A room's problem covers only its claims.
+        let claimed = claims.map(|&l| l == 2);
+        let sub = p
+            .restricted_claiming(&u.mask(2), Cell::new(2, 5), Some(&claimed))
+            .unwrap();
+        for c in sub.cells().coverable.true_cells() {
+            assert!(claimed[sub.to_map_cell(c)], "{c:?}");
+        }
+        assert!(sub.cells().coverable.count_true() > 0);
     }
 }

@@ -21,8 +21,8 @@ use oxcover_decomp::{RoomParams, voronoi};
 use oxcover_grid::io::{ReadOptions, read_map};
 use oxcover_grid::{Cell, Coverability, DiscRobot, OccupancyGrid, Point, components4};
 use oxcover_planners::{
-    BoundaryRoute, CoverageProblem, PlanOutput, Planner, PlannerOptions, RoomUnits, Start,
-    TimeModel, largest_region_cell, registry, room_order,
+    ANY_UNIT, BoundaryRoute, CoverageProblem, PlanOutput, Planner, PlannerOptions, RoomUnits,
+    Start, TimeModel, largest_region_cell, registry, room_order, unit_claims, unit_exits,
 };
 use serde::Serialize;
 
@@ -428,9 +428,12 @@ fn plan_region(
     problem: &CoverageProblem,
     request: &PlanRequest,
     prefix: Vec<Point>,
+    exit: Option<Cell>,
 ) -> Result<RegionPlan> {
     let frame = problem.frame();
-    let output = request.planner.plan(&problem.input(request.seed))?;
+    let mut input = problem.input(request.seed);
+    input.exit = exit;
+    let output = request.planner.plan(&input)?;
     let (planned, tail) = match &output {
         PlanOutput::Metres(points) => {
             let first = points.first().and_then(|p| frame.cell_at(p));
@@ -539,7 +542,7 @@ fn plan_whole(
     request: &PlanRequest,
     t0: Instant,
 ) -> Result<PlanOutcome> {
-    let region = plan_region(problem, request, start_prefix(problem))?;
+    let region = plan_region(problem, request, start_prefix(problem), None)?;
     let plan_ms = t0.elapsed().as_secs_f64() * 1e3;
     let boundary_length_m = polyline_length(&region.points) - polyline_length(&region.raw);
     finish(
@@ -563,6 +566,8 @@ fn plan_rooms(
     t0: Instant,
 ) -> Result<PlanOutcome> {
     let order = room_order(problem, units);
+    let exits = unit_exits(problem, units, &order);
+    let claims = unit_claims(problem, units);
     let mut points: Vec<Point> = Vec::new();
     let mut cells: Vec<Cell> = Vec::new();
     let mut raws = Vec::new();
@@ -582,8 +587,10 @@ fn plan_rooms(
             (entry, prefix)
         };
         let prefix_len = prefix.len();
-        let sub = problem.restricted(&units.mask(u), entry)?;
-        let mut region = plan_region(&sub, request, prefix)?;
+        let claimed = claims.map(|&l| l == u || l == ANY_UNIT);
+        let sub = problem.restricted_claiming(&units.mask(u), entry, Some(&claimed))?;
+        let exit = exits[i].and_then(|c| sub.from_map_cell(c));
+        let mut region = plan_region(&sub, request, prefix, exit)?;
         for c in &mut region.cells {
             *c = sub.to_map_cell(*c);
         }
