@@ -394,11 +394,18 @@ pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
     }
 }
 
+/// Plannable area (m²) below which a room unit joins a neighbour: a
+/// closet or a nook cut off by furniture is covered with the room beside
+/// it (planned alone, its own loop, entry and exit cost more than it
+/// saves: measured on the ipa floor plans, `docs/efficiency.md`).
+pub const MIN_UNIT_M2: f64 = 6.0;
+
 /// The room units of `problem` on `map`: the medial-axis segmentation of
 /// the free cells with indoor defaults ([`oxcover_decomp::voronoi`],
 /// [`RoomParams::indoor`]: rooms end at doors up to 1.6 m wide), split into
-/// connected plannable parts, parts smaller than four coverage cells merged
-/// into a neighbour.
+/// connected plannable parts, parts smaller than [`MIN_UNIT_M2`] of
+/// plannable area (and at least four coverage cells) merged into a
+/// neighbour.
 ///
 /// Not the morphological segmentation: it also cuts open halls into pieces
 /// of at most 47 m², and planning such pieces one by one took longer than
@@ -407,7 +414,9 @@ pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
 pub fn room_units(map: &OccupancyGrid, problem: &CoverageProblem) -> RoomUnits {
     let rooms = voronoi(&map.free_mask(), &RoomParams::indoor(map.resolution()));
     let block = problem.block();
-    RoomUnits::new(problem.plannable(), &rooms.labels, 4 * block * block)
+    let res = map.resolution();
+    let min = ((MIN_UNIT_M2 / (res * res)) as usize).max(4 * block * block);
+    RoomUnits::new(problem.plannable(), &rooms.labels, min)
 }
 
 /// One region's plan: the planner's path from the region's start (after
