@@ -232,6 +232,16 @@ fn for_stroke_cells(
     }
 }
 
+/// How many segments of `points` reach each cell (a contract sample
+/// within `d.reach` of its centre).
+pub(crate) fn reach_counts(points: &[GridPoint], d: &Detours<'_>) -> Grid<u16> {
+    let mut count = Grid::new(d.plannable.width(), d.plannable.height(), 0);
+    for s in points.windows(2) {
+        count_stroke(&mut count, s[0], s[1], d.reach);
+    }
+    count
+}
+
 /// Adds one to the count of every cell within `r` of `a → b`.
 fn count_stroke(count: &mut Grid<u16>, a: GridPoint, b: GridPoint, r: f64) {
     let (w, h) = (count.width(), count.height());
@@ -240,17 +250,13 @@ fn count_stroke(count: &mut Grid<u16>, a: GridPoint, b: GridPoint, r: f64) {
 
 /// `points` with detours inserted until every coverable cell is within
 /// `reach` of the path or no clear detour within `search` reaches it
-/// without uncovering another. Returns the new path and the number of
-/// detours.
-pub(crate) fn insert_detours(points: &[GridPoint], d: &Detours<'_>) -> (Vec<GridPoint>, usize) {
-    if points.len() < 2 {
-        return (points.to_vec(), 0);
-    }
+/// without uncovering another. Returns the new path and, for each cell,
+/// how many of its segments reach it (for [`tighten`]).
+pub(crate) fn insert_detours(points: &[GridPoint], d: &Detours<'_>) -> (Vec<GridPoint>, Grid<u16>) {
     let (w, h) = (d.plannable.width(), d.plannable.height());
-    // How many segments reach each cell.
-    let mut count: Grid<u16> = Grid::new(w, h, 0);
-    for s in points.windows(2) {
-        count_stroke(&mut count, s[0], s[1], d.reach);
+    let mut count = reach_counts(points, d);
+    if points.len() < 2 {
+        return (points.to_vec(), count);
     }
     let mut path = Linked::new(points);
     let mut buckets = SegmentBuckets::new(w, h);
@@ -264,7 +270,6 @@ pub(crate) fn insert_detours(points: &[GridPoint], d: &Detours<'_>) -> (Vec<Grid
         .collect();
     let mut near = Vec::new();
     let mut options: Vec<(f64, usize, Via)> = Vec::new();
-    let mut inserted = 0;
     for m in missed {
         if count[m] > 0 {
             continue;
@@ -336,9 +341,8 @@ pub(crate) fn insert_detours(points: &[GridPoint], d: &Detours<'_>) -> (Vec<Grid
             prev = (id, p);
         }
         buckets.add(prev.0, prev.1, pb);
-        inserted += 1;
     }
-    (path.points(), inserted)
+    (path.points(), count)
 }
 
 /// Passes over the path.
@@ -349,7 +353,7 @@ const RELOCATIONS: [f64; 3] = [0.75, 0.5, 0.25];
 
 /// Largest box (cells) a vertex change looks at; larger triangles (the
 /// corners of long lanes) are kept without a look.
-const REMOVAL_BOX: usize = 20_000;
+const REMOVAL_BOX: usize = 4_000;
 
 /// `points` tightened: each vertex is removed, or else moved towards the
 /// line of its neighbours (¾, ½, ¼ of the way), where that is clear, saves
@@ -357,16 +361,18 @@ const REMOVAL_BOX: usize = 20_000;
 /// reach (the same sample-exact counts as [`insert_detours`]); two passes.
 /// After detours, some straightened corners and staircase vertices are no
 /// longer needed and many are sharper than coverage requires. Returns the
-/// new path and the number of vertices removed or moved.
-pub(crate) fn tighten(points: &[GridPoint], d: &Detours<'_>) -> (Vec<GridPoint>, usize) {
+/// new path and the number of vertices removed or moved. `count` is how
+/// many segments of `points` reach each cell, as [`insert_detours`]
+/// returns it.
+pub(crate) fn tighten(
+    points: &[GridPoint],
+    d: &Detours<'_>,
+    mut count: Grid<u16>,
+) -> (Vec<GridPoint>, usize) {
     if points.len() < 3 {
         return (points.to_vec(), 0);
     }
     let (w, h) = (d.plannable.width(), d.plannable.height());
-    let mut count: Grid<u16> = Grid::new(w, h, 0);
-    for s in points.windows(2) {
-        count_stroke(&mut count, s[0], s[1], d.reach);
-    }
     let mut path = Linked::new(points);
     let mut removed = 0;
     for _round in 0..ROUNDS {
@@ -425,12 +431,14 @@ pub(crate) fn tighten(points: &[GridPoint], d: &Detours<'_>) -> (Vec<GridPoint>,
                 if !clear || replacement_uncovers(d, &count, pu, &[pv], &mid, px) {
                     continue;
                 }
-                for_box_cells((w, h), &[pu, pv, px], d.reach, |c| {
-                    let q = cell_center(c);
-                    let old = pieces_reaching(pu, &[pv], px, q, d.reach);
-                    let new = pieces_reaching(pu, &mid, px, q, d.reach);
-                    count[c] = (count[c] + new).saturating_sub(old);
-                });
+                for (a, b) in pieces(pu, &[pv], px) {
+                    for_stroke_cells(a, b, d.reach, w, h, |c| {
+                        count[c] = count[c].saturating_sub(1);
+                    });
+                }
+                for (a, b) in pieces(pu, &mid, px) {
+                    count_stroke(&mut count, a, b, d.reach);
+                }
                 match m {
                     None => {
                         path.next[u] = x;
@@ -477,21 +485,6 @@ fn bounds(pts: &[GridPoint]) -> (GridPoint, GridPoint) {
     (lo, hi)
 }
 
-/// Calls `f` on every cell of a `w × h` grid in the box round `pts`
-/// widened by `r`.
-fn for_box_cells((w, h): (usize, usize), pts: &[GridPoint], r: f64, mut f: impl FnMut(Cell)) {
-    let (lo, hi) = bounds(pts);
-    let c0 = (lo.x - r).floor().max(0.0) as usize;
-    let c1 = ((hi.x + r).ceil().max(0.0) as usize).min(w);
-    let r0 = (lo.y - r).floor().max(0.0) as usize;
-    let r1 = ((hi.y + r).ceil().max(0.0) as usize).min(h);
-    for row in r0..r1 {
-        for col in c0..c1 {
-            f(Cell::new(row, col));
-        }
-    }
-}
-
 /// How many pieces of `u → mid… → x` have a sample within `r` of `q`.
 fn pieces_reaching(u: GridPoint, mid: &[GridPoint], x: GridPoint, q: GridPoint, r: f64) -> u16 {
     let mut n = 0;
@@ -503,9 +496,20 @@ fn pieces_reaching(u: GridPoint, mid: &[GridPoint], x: GridPoint, q: GridPoint, 
     n
 }
 
-/// Whether replacing `u → old… → x` by `u → new… → x` (`new` within the
-/// box of the old) leaves a coverable cell that only the old pieces
-/// reached out of reach.
+/// The pieces of the polyline `u → mid… → x`.
+fn pieces(u: GridPoint, mid: &[GridPoint], x: GridPoint) -> Vec<(GridPoint, GridPoint)> {
+    let mut out = Vec::with_capacity(mid.len() + 1);
+    let mut prev = u;
+    for &p in mid.iter().chain(std::iter::once(&x)) {
+        out.push((prev, p));
+        prev = p;
+    }
+    out
+}
+
+/// Whether replacing `u → old… → x` by `u → new… → x` leaves a coverable
+/// cell that only the old pieces reached out of reach (only the old
+/// pieces' strokes are looked at: nothing else can be lost).
 fn replacement_uncovers(
     d: &Detours<'_>,
     count: &Grid<u16>,
@@ -514,20 +518,25 @@ fn replacement_uncovers(
     new: &[GridPoint],
     x: GridPoint,
 ) -> bool {
-    let mut lost = false;
-    let mut pts = vec![u, x];
-    pts.extend_from_slice(old);
-    for_box_cells((count.width(), count.height()), &pts, d.reach, |c| {
-        if lost || count[c] == 0 || !d.coverable[c] {
-            return;
+    let (w, h) = (count.width(), count.height());
+    for (a, b) in pieces(u, old, x) {
+        let mut lost = false;
+        for_stroke_cells(a, b, d.reach, w, h, |c| {
+            if lost || !d.coverable[c] || count[c] > old.len() as u16 + 1 {
+                return;
+            }
+            let q = cell_center(c);
+            if pieces_reaching(u, old, x, q, d.reach) == count[c]
+                && pieces_reaching(u, new, x, q, d.reach) == 0
+            {
+                lost = true;
+            }
+        });
+        if lost {
+            return true;
         }
-        let q = cell_center(c);
-        let before = pieces_reaching(u, old, x, q, d.reach);
-        if before == count[c] && pieces_reaching(u, new, x, q, d.reach) == 0 {
-            lost = true;
-        }
-    });
-    lost
+    }
+    false
 }
 
 /// The new vertices of a detour (at most three).
@@ -857,8 +866,8 @@ mod tests {
             search: 2.0,
             time: time(),
         };
-        let (out, n) = insert_detours(&path, &d);
-        assert_eq!(n, 1, "{out:?}");
+        let (out, _) = insert_detours(&path, &d);
+        assert_eq!(out.len(), path.len() + 3, "one V: {out:?}");
         assert_eq!(out.first(), path.first());
         assert_eq!(out.last(), path.last());
         // The nook (row 0, column 10) is within reach of a sample now.
@@ -891,8 +900,8 @@ mod tests {
             search: 3.0,
             time: time(),
         };
-        let (out, n) = insert_detours(&path, &d);
-        assert_eq!((out, n), (path, 0));
+        let (out, _) = insert_detours(&path, &d);
+        assert_eq!(out, path);
     }
 
     /// A zigzag through an open room where only the middle row must be
@@ -918,7 +927,7 @@ mod tests {
             search: 2.0,
             time: time(),
         };
-        let (out, n) = tighten(&path, &d);
+        let (out, n) = tighten(&path, &d, reach_counts(&path, &d));
         assert!(n > 0);
         let covered = sampled(20, 3, &out, 1.0);
         for col in 0..20 {
@@ -982,8 +991,8 @@ mod tests {
             prop_assume!(clear.len() >= 2 && cell_of(&plannable, clear[0]).is_some_and(|c| plannable[c]));
             let coverable = Grid::new(w, h, true);
             let d = Detours { plannable: &plannable, coverable: &coverable, reach, search: 2.0 * reach, time: time() };
-            let (detoured, _) = insert_detours(&clear, &d);
-            let (out, _) = tighten(&detoured, &d);
+            let (detoured, count) = insert_detours(&clear, &d);
+            let (out, _) = tighten(&detoured, &d, count);
             prop_assert_eq!(out.first(), clear.first());
             prop_assert_eq!(out.last(), clear.last());
             for s in out.windows(2) {

@@ -239,10 +239,10 @@ fn plan_lanes(
         search: 5.0 * tool,
         time: cell_time,
     };
-    let (points, _) = insert_detours(path.points(), &detours);
+    let (points, count) = insert_detours(path.points(), &detours);
     // Then the vertices detours made unneeded go, and the rest move
     // towards the line of their neighbours, where coverage allows.
-    let (points, _) = tighten(&points, &detours);
+    let (points, _) = tighten(&points, &detours, count);
     path.replace(points);
     path.cover_leftovers(input.coarse, input.visit_radius())?;
     Ok(path.into_metres(&input.frame))
