@@ -346,7 +346,7 @@ pub(crate) fn insert_detours(points: &[GridPoint], d: &Detours<'_>) -> (Vec<Grid
 }
 
 /// Passes over the path.
-const ROUNDS: usize = 2;
+const ROUNDS: usize = 4;
 
 /// How far towards the line of its neighbours a vertex is tried moved.
 const RELOCATIONS: [f64; 3] = [0.75, 0.5, 0.25];
