@@ -349,16 +349,17 @@ pub(crate) fn insert_detours(points: &[GridPoint], d: &Detours<'_>) -> (Vec<Grid
 const ROUNDS: usize = 4;
 
 /// How far towards the line of its neighbours a vertex is tried moved.
-const RELOCATIONS: [f64; 3] = [0.75, 0.5, 0.25];
+const RELOCATIONS: [f64; 5] = [0.9, 0.75, 0.5, 0.25, 0.1];
 
 /// Largest box (cells) a vertex change looks at; larger triangles (the
 /// corners of long lanes) are kept without a look.
 const REMOVAL_BOX: usize = 4_000;
 
 /// `points` tightened: each vertex is removed, or else moved towards the
-/// line of its neighbours (¾, ½, ¼ of the way), where that is clear, saves
+/// line of its neighbours ([`RELOCATIONS`]), where that is clear, saves
 /// estimated time and leaves no coverable cell the path reached out of
-/// reach (the same sample-exact counts as [`insert_detours`]); two passes.
+/// reach (the same sample-exact counts as [`insert_detours`]); [`ROUNDS`]
+/// passes.
 /// After detours, some straightened corners and staircase vertices are no
 /// longer needed and many are sharper than coverage requires. Returns the
 /// new path and the number of vertices removed or moved. `count` is how
@@ -372,91 +373,102 @@ pub(crate) fn tighten(
     if points.len() < 3 {
         return (points.to_vec(), 0);
     }
-    let (w, h) = (d.plannable.width(), d.plannable.height());
     let mut path = Linked::new(points);
-    let mut removed = 0;
+    let mut changes = 0;
     for _round in 0..ROUNDS {
         let mut changed = false;
         let mut v = path.next[0];
         while v != END && path.next[v] != END {
-            let (u, x) = (path.prev[v], path.next[v]);
-            let next = x;
-            let (pu, pv, px) = (path.pts[u], path.pts[v], path.pts[x]);
-            let before = path.prev[u];
-            let after = path.next[x];
-            let local = |mid: &[GridPoint]| {
-                let mut pts: Vec<GridPoint> = Vec::with_capacity(5);
-                if before != END {
-                    pts.push(path.pts[before]);
-                }
-                pts.push(pu);
-                pts.extend_from_slice(mid);
-                pts.push(px);
-                if after != END {
-                    pts.push(path.pts[after]);
-                }
-                polyline_time(&pts, &d.time)
-            };
-            if box_cells(&[pu, pv, px], d.reach) > REMOVAL_BOX {
-                v = next;
-                continue;
-            }
-            let here = local(&[pv]);
-            // Removing `v`, else moving it towards the line `u → x`.
-            let ux = px - pu;
-            let len2 = ux.norm_squared();
-            let t = if len2 > 0.0 {
-                ((pv - pu).dot(&ux) / len2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            let foot = pu + ux * t;
-            let mut moves: Vec<Option<GridPoint>> = vec![None];
-            for f in RELOCATIONS {
-                moves.push(Some(off_edges(pv + (foot - pv) * f)));
-            }
-            for m in moves {
-                let mid: Vec<GridPoint> = m.into_iter().collect();
-                if local(&mid) >= here - 1e-9 {
-                    continue;
-                }
-                let clear = match m {
-                    None => segment_clear(d.plannable, pu, px),
-                    Some(q) => {
-                        cell_of(d.plannable, q).is_some_and(|c| d.plannable[c])
-                            && segment_clear(d.plannable, pu, q)
-                            && segment_clear(d.plannable, q, px)
-                    }
-                };
-                if !clear || replacement_uncovers(d, &count, pu, &[pv], &mid, px) {
-                    continue;
-                }
-                for (a, b) in pieces(pu, &[pv], px) {
-                    for_stroke_cells(a, b, d.reach, w, h, |c| {
-                        count[c] = count[c].saturating_sub(1);
-                    });
-                }
-                for (a, b) in pieces(pu, &mid, px) {
-                    count_stroke(&mut count, a, b, d.reach);
-                }
-                match m {
-                    None => {
-                        path.next[u] = x;
-                        path.prev[x] = u;
-                    }
-                    Some(q) => path.pts[v] = q,
-                }
-                removed += 1;
+            // The vertex removed, or moved towards the line of its
+            // neighbours (replacing two at once was measured: no gain).
+            let x = path.next[v];
+            if try_replace(&mut path, &mut count, d, v) {
+                changes += 1;
                 changed = true;
-                break;
             }
-            v = next;
+            v = x;
         }
         if !changed {
             break;
         }
     }
-    (path.points(), removed)
+    (path.points(), changes)
+}
+
+/// Replaces node `v` by the first of: nothing, or a point on the way from
+/// it to the line of its neighbours (see [`RELOCATIONS`]), that is clear,
+/// saves time and uncovers nothing. Returns whether it did.
+fn try_replace(path: &mut Linked, count: &mut Grid<u16>, d: &Detours<'_>, v: usize) -> bool {
+    let (u, x) = (path.prev[v], path.next[v]);
+    if u == END || x == END {
+        return false;
+    }
+    let (pu, pv, px) = (path.pts[u], path.pts[v], path.pts[x]);
+    if box_cells(&[pu, pv, px], d.reach) > REMOVAL_BOX {
+        return false;
+    }
+    let (before, after) = (path.prev[u], path.next[x]);
+    let local = |mid: &[GridPoint]| {
+        let mut pts: Vec<GridPoint> = Vec::with_capacity(5);
+        if before != END {
+            pts.push(path.pts[before]);
+        }
+        pts.push(pu);
+        pts.extend_from_slice(mid);
+        pts.push(px);
+        if after != END {
+            pts.push(path.pts[after]);
+        }
+        polyline_time(&pts, &d.time)
+    };
+    let here = local(&[pv]);
+    let ux = px - pu;
+    let len2 = ux.norm_squared();
+    let t = if len2 > 0.0 {
+        ((pv - pu).dot(&ux) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let foot = pu + ux * t;
+    let mut moves: Vec<Option<GridPoint>> = vec![None];
+    for f in RELOCATIONS {
+        moves.push(Some(off_edges(pv + (foot - pv) * f)));
+    }
+    let (w, h) = (count.width(), count.height());
+    for m in moves {
+        let mid: Vec<GridPoint> = m.into_iter().collect();
+        if local(&mid) >= here - 1e-9 {
+            continue;
+        }
+        let clear = match m {
+            None => segment_clear(d.plannable, pu, px),
+            Some(q) => {
+                cell_of(d.plannable, q).is_some_and(|c| d.plannable[c])
+                    && segment_clear(d.plannable, pu, q)
+                    && segment_clear(d.plannable, q, px)
+            }
+        };
+        if !clear || replacement_uncovers(d, count, pu, &[pv], &mid, px) {
+            continue;
+        }
+        for (a, b) in pieces(pu, &[pv], px) {
+            for_stroke_cells(a, b, d.reach, w, h, |c| {
+                count[c] = count[c].saturating_sub(1);
+            });
+        }
+        for (a, b) in pieces(pu, &mid, px) {
+            count_stroke(count, a, b, d.reach);
+        }
+        match m {
+            None => {
+                path.next[u] = x;
+                path.prev[x] = u;
+            }
+            Some(q) => path.pts[v] = q,
+        }
+        return true;
+    }
+    false
 }
 
 /// Seconds to drive `pts`, turning on the spot at each vertex.

@@ -1218,10 +1218,11 @@ mod exact {
         v.iter().map(|&(x, y)| Point::new(x, y)).collect()
     }
 
-    /// A corridor one cell wide: its contour, out to the east wall and
-    /// back (no lane fits: the tool is half a cell). The loop's trip to
-    /// the west wall first goes: the start cell's centre already covers
-    /// it, and tightening drops every vertex coverage does not need.
+    /// A corridor one cell wide: its contour, out towards the east wall
+    /// and back (no lane fits: the tool is half a cell). Tightening drops
+    /// the trip to the west wall (the start cell's centre covers it) and
+    /// pulls the far end in as far as the last cell's centre stays within
+    /// half a cell.
     #[test]
     fn a_corridor_is_driven_out_and_back() {
         assert_eq!(plan("......"), pts(&[(0.5, 0.5), (5.95, 0.5), (0.5, 0.5)]));
@@ -1237,9 +1238,9 @@ mod exact {
             plan("...\n..."),
             pts(&[
                 (0.5, 1.5),
-                (2.46, 1.01),
-                (2.48, 0.98),
-                (0.39, 0.86),
+                (2.46, 1.0),
+                (2.47, 1.0),
+                (0.42, 0.98),
                 (0.5, 1.5)
             ])
         );
@@ -1255,7 +1256,7 @@ mod exact {
             plan("....\n.##.\n...."),
             pts(&[
                 (0.5, 2.5),
-                (3.43, 2.15),
+                (3.38, 2.05),
                 (3.33, 0.96),
                 (0.58, 0.96),
                 (0.5, 2.5)
