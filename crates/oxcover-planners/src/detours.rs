@@ -375,22 +375,30 @@ pub(crate) fn tighten(
     }
     let mut path = Linked::new(points);
     let mut changes = 0;
+    // Each pass looks only at the vertices next to a change of the pass
+    // before (the first at all).
+    let mut dirty = vec![true; points.len()];
     for _round in 0..ROUNDS {
+        let mut next_dirty = vec![false; points.len()];
         let mut changed = false;
         let mut v = path.next[0];
         while v != END && path.next[v] != END {
             // The vertex removed, or moved towards the line of its
             // neighbours (replacing two at once was measured: no gain).
-            let x = path.next[v];
-            if try_replace(&mut path, &mut count, d, v) {
+            let (u, x) = (path.prev[v], path.next[v]);
+            if dirty[v] && try_replace(&mut path, &mut count, d, v) {
                 changes += 1;
                 changed = true;
+                for k in [u, v, x] {
+                    next_dirty[k] = true;
+                }
             }
             v = x;
         }
         if !changed {
             break;
         }
+        dirty = next_dirty;
     }
     (path.points(), changes)
 }

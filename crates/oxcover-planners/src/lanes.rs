@@ -121,8 +121,11 @@ const EDGE_NUDGE: f64 = 1e-4;
 /// Most nodes the order's 2-opt runs on.
 const TWO_OPT_LIMIT: usize = 600;
 /// The cheapest lane angles (by their chains) whose order is planned to
-/// compare transits too.
+/// compare transits too, if within [`NEAR_TIE`] of the cheapest.
 const ANGLES_ORDERED: usize = 3;
+/// How much dearer than the cheapest (by its chains) an angle may be and
+/// still have its transits compared.
+const NEAR_TIE: f64 = 1.15;
 /// Entry points tried per loop.
 const LOOP_ENTRIES: usize = 8;
 
@@ -200,17 +203,26 @@ fn plan_lanes(
         }
         scored.push((cost, chains));
     }
-    // The cheapest few angles are compared with their transits too: the
-    // order of loops and chains from the start to the exit (a direction
-    // that leaves a door's stub as chains of its own, or ends its lanes
-    // far from the exit, costs there).
+    // The cheapest few angles, where near ties, are compared with their
+    // transits too: the order of loops and chains from the start to the
+    // exit (a direction that leaves a door's stub as chains of its own, or
+    // ends its lanes far from the exit, costs there).
     scored.sort_by(|a, b| a.0.total_cmp(&b.0));
     let exit = input.exit.filter(|&c| plannable.is_set(c)).map(cell_center);
+    let mut region = Region::new(plannable);
     let mut best: Option<(f64, Vec<Chain>, Tour)> = None;
-    for (cost, chains) in scored.into_iter().take(ANGLES_ORDERED) {
+    let cheapest = scored.first().map_or(0.0, |b| b.0);
+    let near_ties = scored
+        .into_iter()
+        .take(ANGLES_ORDERED)
+        .enumerate()
+        .filter(|(i, (cost, _))| *i == 0 || *cost <= NEAR_TIE * cheapest)
+        .map(|(_, c)| c);
+    for (cost, chains) in near_ties {
         let mut nodes: Vec<Node> = loops.iter().map(Node::Loop).collect();
         nodes.extend(chains.iter().map(Node::Chain));
-        let (order, transit) = order_nodes(&nodes, cell_center(start), exit, plannable, &cell_time);
+        let ends = (cell_center(start), exit);
+        let (order, transit) = order_nodes(&nodes, ends, &mut region, &cell_time);
         let total = cost + transit;
         if best.as_ref().is_none_or(|b| total < b.0) {
             best = Some((total, chains, order));
@@ -852,17 +864,35 @@ struct Transits {
     speed: f64,
 }
 
+/// The region the transit table searches, with a wavefront to reuse
+/// (made when first needed).
+struct Region<'a> {
+    plannable: &'a Grid<bool>,
+    cells: usize,
+    wave: Option<Wavefront>,
+}
+
+impl<'a> Region<'a> {
+    fn new(plannable: &'a Grid<bool>) -> Self {
+        Self {
+            plannable,
+            cells: plannable.count_true(),
+            wave: None,
+        }
+    }
+}
+
 /// Most cell visits the transit table may cost (points × plannable cells).
 const TRANSIT_BUDGET: f64 = 6e7;
 
 impl Transits {
     fn new(
         nodes: &[Node<'_>],
-        start: GridPoint,
-        end: Option<GridPoint>,
-        plannable: &Grid<bool>,
+        (start, end): (GridPoint, Option<GridPoint>),
+        region: &mut Region<'_>,
         t: &TimeModel,
     ) -> Self {
+        let plannable = region.plannable;
         let mut points: Vec<GridPoint> = Vec::new();
         let mut index: std::collections::HashMap<(u64, u64), usize> =
             std::collections::HashMap::new();
@@ -888,9 +918,9 @@ impl Transits {
             })
             .collect();
         let n = points.len();
-        let cells = plannable.count_true() as f64;
+        let cells = region.cells as f64;
         let ratio = (n as f64 * cells <= TRANSIT_BUDGET && n * n <= 16_000_000).then(|| {
-            let mut wave = Wavefront::new(plannable);
+            let wave = region.wave.get_or_insert_with(|| Wavefront::new(plannable));
             let at: Vec<Option<Cell>> = points
                 .iter()
                 .map(|&p| cell_of(plannable, p).filter(|&c| plannable[c]))
@@ -956,16 +986,16 @@ type Tour = Vec<(usize, usize)>;
 /// transit time ([`Transits`]; a generalised TSP).
 fn order_nodes(
     nodes: &[Node<'_>],
-    start: GridPoint,
-    end: Option<GridPoint>,
-    plannable: &Grid<bool>,
+    ends: (GridPoint, Option<GridPoint>),
+    region: &mut Region<'_>,
     t: &TimeModel,
 ) -> (Tour, f64) {
     let n = nodes.len();
     if n == 0 {
         return (Vec::new(), 0.0);
     }
-    let transits = Transits::new(nodes, start, end, plannable, t);
+    let start = ends.0;
+    let transits = Transits::new(nodes, ends, region, t);
     const START: usize = 0;
     // Nearest neighbour over every entry: the least cost, ties to the lower
     // node and option. Entries sit in buckets, searched ring by ring
