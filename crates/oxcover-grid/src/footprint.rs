@@ -22,19 +22,24 @@ pub fn for_each_sample(points: &[Point], step: f64, mut f: impl FnMut(&Point)) {
     f(first);
     for w in points.windows(2) {
         let (a, b) = (w[0], w[1]);
-        let len = (b - a).norm();
-        // The tolerance keeps a segment of exactly m·step from getting an extra
-        // sample through rounding, so samples of grid-aligned paths fall on the
-        // cell centres they pass.
-        let n = if step > 0.0 && len.is_finite() {
-            (len / step - 1e-9).ceil().max(1.0) as usize
-        } else {
-            1
-        };
+        let n = sample_parts(a, b, step);
         for i in 1..=n {
             let t = i as f64 / n as f64;
             f(&(a + (b - a) * t));
         }
+    }
+}
+
+/// How many equal parts the sampler splits the segment `a → b` into.
+fn sample_parts(a: Point, b: Point, step: f64) -> usize {
+    let len = (b - a).norm();
+    // The tolerance keeps a segment of exactly m·step from getting an extra
+    // sample through rounding, so samples of grid-aligned paths fall on the
+    // cell centres they pass.
+    if step > 0.0 && len.is_finite() {
+        (len / step - 1e-9).ceil().max(1.0) as usize
+    } else {
+        1
     }
 }
 
@@ -89,12 +94,7 @@ pub fn mark_covered(frame: &MapFrame, points: &[Point], tool_radius: f64, mask: 
     mark_disc(frame, first, tool_radius, mask);
     for w in points.windows(2) {
         let (a, b) = (w[0], w[1]);
-        let len = (b - a).norm();
-        let n = if step > 0.0 && len.is_finite() {
-            (len / step - 1e-9).ceil().max(1.0) as usize
-        } else {
-            1
-        };
+        let n = sample_parts(a, b, step);
         let sample = |i: usize| a + (b - a) * (i as f64 / n as f64);
         if n <= SHORT_SEGMENT {
             for i in 1..=n {

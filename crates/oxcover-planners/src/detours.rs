@@ -112,6 +112,18 @@ fn off_edges(p: GridPoint) -> GridPoint {
     GridPoint::new(pull(p.x), pull(p.y))
 }
 
+/// The point of the segment `a → b` nearest `m`.
+fn foot_on(a: GridPoint, b: GridPoint, m: GridPoint) -> GridPoint {
+    let ab = b - a;
+    let len2 = ab.norm_squared();
+    let t = if len2 > 0.0 {
+        ((m - a).dot(&ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    a + ab * t
+}
+
 /// Absolute heading change (rad) from `u` to `v`; 0 when either is null.
 fn heading_change(u: Vector, v: Vector) -> f64 {
     if u.norm() < 1e-12 || v.norm() < 1e-12 {
@@ -430,14 +442,7 @@ fn try_replace(path: &mut Linked, count: &mut Grid<u16>, d: &Detours<'_>, v: usi
         polyline_time(&pts, &d.time)
     };
     let here = local(&[pv]);
-    let ux = px - pu;
-    let len2 = ux.norm_squared();
-    let t = if len2 > 0.0 {
-        ((pv - pu).dot(&ux) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let foot = pu + ux * t;
+    let foot = foot_on(pu, px, pv);
     let mut moves: Vec<Option<GridPoint>> = vec![None];
     for f in RELOCATIONS {
         moves.push(Some(off_edges(pv + (foot - pv) * f)));
@@ -765,15 +770,8 @@ fn candidates(
     disc: Option<&mut [GridPoint]>,
 ) -> Vec<GridPoint> {
     let mut out = Vec::with_capacity(CELL_CANDIDATES + 1);
-    let ab = b - a;
-    let len2 = ab.norm_squared();
-    let t = if len2 > 0.0 {
-        ((m - a).dot(&ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
     let Some(disc) = disc else {
-        let off = a + ab * t - m;
+        let off = foot_on(a, b, m) - m;
         let r = d.reach - 2.0 * EDGE_GAP;
         if off.norm() > 1e-9 {
             let p = m + off * (r / off.norm());
