@@ -236,7 +236,13 @@ fn for_stroke_cells(
                 let q = cell_center(c);
                 let t = param(q);
                 let mine = t >= t0 && (t < t1 || k + 1 == n);
-                if mine && sample_reaches(a, b, q, r) {
+                if !mine {
+                    continue;
+                }
+                // Well within reach of the segment, a sample reaches too;
+                // beyond it, none does; between, the samples decide.
+                let gap = segment_distance(a, b, q);
+                if gap <= r - SAMPLE_GAP || (gap <= r && sample_reaches(a, b, q, r)) {
                     f(c);
                 }
             }
@@ -357,6 +363,9 @@ pub(crate) fn insert_detours(points: &[GridPoint], d: &Detours<'_>) -> (Vec<Grid
     (path.points(), count)
 }
 
+/// How far along either piece a vertex is tried slid.
+const SLIDES: [f64; 2] = [0.5, 0.25];
+
 /// Passes over the path.
 const ROUNDS: usize = 4;
 
@@ -368,7 +377,8 @@ const RELOCATIONS: [f64; 5] = [0.9, 0.75, 0.5, 0.25, 0.1];
 const REMOVAL_BOX: usize = 4_000;
 
 /// `points` tightened: each vertex is removed, or else moved towards the
-/// line of its neighbours ([`RELOCATIONS`]), where that is clear, saves
+/// line of its neighbours ([`RELOCATIONS`]) or slid along one of its pieces
+/// ([`SLIDES`]), where that is clear, saves
 /// estimated time and leaves no coverable cell the path reached out of
 /// reach (the same sample-exact counts as [`insert_detours`]); [`ROUNDS`]
 /// passes.
@@ -415,9 +425,10 @@ pub(crate) fn tighten(
     (path.points(), changes)
 }
 
-/// Replaces node `v` by the first of: nothing, or a point on the way from
-/// it to the line of its neighbours (see [`RELOCATIONS`]), that is clear,
-/// saves time and uncovers nothing. Returns whether it did.
+/// Replaces node `v` by the first of: nothing, a point on the way from it
+/// to the line of its neighbours ([`RELOCATIONS`]), or a point along one
+/// of its pieces ([`SLIDES`]), that is clear, saves time and uncovers
+/// nothing. Returns whether it did.
 fn try_replace(path: &mut Linked, count: &mut Grid<u16>, d: &Detours<'_>, v: usize) -> bool {
     let (u, x) = (path.prev[v], path.next[v]);
     if u == END || x == END {
@@ -446,6 +457,11 @@ fn try_replace(path: &mut Linked, count: &mut Grid<u16>, d: &Detours<'_>, v: usi
     let mut moves: Vec<Option<GridPoint>> = vec![None];
     for f in RELOCATIONS {
         moves.push(Some(off_edges(pv + (foot - pv) * f)));
+    }
+    // Or slid along either piece (a V's shoulder slid outwards flattens it).
+    for f in SLIDES {
+        moves.push(Some(off_edges(pv + (pu - pv) * f)));
+        moves.push(Some(off_edges(pv + (px - pv) * f)));
     }
     let (w, h) = (count.width(), count.height());
     for m in moves {
@@ -510,6 +526,21 @@ fn bounds(pts: &[GridPoint]) -> (GridPoint, GridPoint) {
     (lo, hi)
 }
 
+/// Half the largest gap between the contract's samples (cells).
+const SAMPLE_GAP: f64 = 0.125 + 1e-9;
+
+/// Whether a piece of `u → mid… → x` passes within `r` of `q`.
+fn near_pieces(u: GridPoint, mid: &[GridPoint], x: GridPoint, q: GridPoint, r: f64) -> bool {
+    let mut prev = u;
+    for &p in mid.iter().chain(std::iter::once(&x)) {
+        if segment_distance(prev, p, q) <= r {
+            return true;
+        }
+        prev = p;
+    }
+    false
+}
+
 /// How many pieces of `u → mid… → x` have a sample within `r` of `q`.
 fn pieces_reaching(u: GridPoint, mid: &[GridPoint], x: GridPoint, q: GridPoint, r: f64) -> u16 {
     let mut n = 0;
@@ -551,6 +582,11 @@ fn replacement_uncovers(
                 return;
             }
             let q = cell_center(c);
+            // Well within reach of a new piece: one of its samples (at
+            // most ¼ cell apart) reaches it too.
+            if near_pieces(u, new, x, q, d.reach - SAMPLE_GAP) {
+                return;
+            }
             if pieces_reaching(u, old, x, q, d.reach) == count[c]
                 && pieces_reaching(u, new, x, q, d.reach) == 0
             {
