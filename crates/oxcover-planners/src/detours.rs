@@ -213,6 +213,30 @@ fn for_stroke_cells(
     h: usize,
     mut f: impl FnMut(Cell),
 ) {
+    stroke_until(
+        a,
+        b,
+        r,
+        (w, h),
+        |_| true,
+        |c| {
+            f(c);
+            false
+        },
+    );
+}
+
+/// [`for_stroke_cells`] over the cells `want` accepts (asked before any
+/// geometry), stopping at the first cell for which `stop` returns `true`;
+/// returns whether one did.
+fn stroke_until(
+    a: GridPoint,
+    b: GridPoint,
+    r: f64,
+    (w, h): (usize, usize),
+    want: impl Fn(Cell) -> bool,
+    mut stop: impl FnMut(Cell) -> bool,
+) -> bool {
     let ab = b - a;
     let len = ab.norm();
     let n = (len / (2.0 * r).max(1.0)).ceil().max(1.0) as usize;
@@ -233,6 +257,9 @@ fn for_stroke_cells(
         for row in r0..r1 {
             for col in c0..c1 {
                 let c = Cell::new(row, col);
+                if !want(c) {
+                    continue;
+                }
                 let q = cell_center(c);
                 let t = param(q);
                 let mine = t >= t0 && (t < t1 || k + 1 == n);
@@ -242,12 +269,13 @@ fn for_stroke_cells(
                 // Well within reach of the segment, a sample reaches too;
                 // beyond it, none does; between, the samples decide.
                 let gap = segment_distance(a, b, q);
-                if gap <= r - SAMPLE_GAP || (gap <= r && sample_reaches(a, b, q, r)) {
-                    f(c);
+                if (gap <= r - SAMPLE_GAP || (gap <= r && sample_reaches(a, b, q, r))) && stop(c) {
+                    return true;
                 }
             }
         }
     }
+    false
 }
 
 /// How many segments of `points` reach each cell (a contract sample
@@ -364,7 +392,7 @@ pub(crate) fn insert_detours(points: &[GridPoint], d: &Detours<'_>) -> (Vec<Grid
 }
 
 /// How far along either piece a vertex is tried slid.
-const SLIDES: [f64; 2] = [0.5, 0.25];
+const SLIDES: [f64; 6] = [0.9, 0.75, 0.5, 0.25, 0.1, 0.03];
 
 /// Passes over the path.
 const ROUNDS: usize = 4;
@@ -439,18 +467,27 @@ fn try_replace(path: &mut Linked, count: &mut Grid<u16>, d: &Detours<'_>, v: usi
         return false;
     }
     let (before, after) = (path.prev[u], path.next[x]);
+    // Seconds of the stretch from `v`'s neighbours' neighbours, with `mid`
+    // (at most one point) between `u` and `x`.
     let local = |mid: &[GridPoint]| {
-        let mut pts: Vec<GridPoint> = Vec::with_capacity(5);
+        let mut pts = [pu; 5];
+        let mut n = 0;
+        let mut push = |p: GridPoint| {
+            pts[n] = p;
+            n += 1;
+        };
         if before != END {
-            pts.push(path.pts[before]);
+            push(path.pts[before]);
         }
-        pts.push(pu);
-        pts.extend_from_slice(mid);
-        pts.push(px);
+        push(pu);
+        if let Some(&m) = mid.first() {
+            push(m);
+        }
+        push(px);
         if after != END {
-            pts.push(path.pts[after]);
+            push(path.pts[after]);
         }
-        polyline_time(&pts, &d.time)
+        polyline_time(&pts[..n], &d.time)
     };
     let here = local(&[pv]);
     let foot = foot_on(pu, px, pv);
@@ -574,30 +611,19 @@ fn replacement_uncovers(
     new: &[GridPoint],
     x: GridPoint,
 ) -> bool {
-    let (w, h) = (count.width(), count.height());
-    for (a, b) in pieces(u, old, x) {
-        let mut lost = false;
-        for_stroke_cells(a, b, d.reach, w, h, |c| {
-            if lost || !d.coverable[c] || count[c] > old.len() as u16 + 1 {
-                return;
-            }
+    let size = (count.width(), count.height());
+    // Only a coverable cell no other piece reaches can be lost.
+    let at_risk = |c: Cell| d.coverable[c] && count[c] <= old.len() as u16 + 1;
+    pieces(u, old, x).into_iter().any(|(a, b)| {
+        stroke_until(a, b, d.reach, size, at_risk, |c| {
             let q = cell_center(c);
             // Well within reach of a new piece: one of its samples (at
             // most ¼ cell apart) reaches it too.
-            if near_pieces(u, new, x, q, d.reach - SAMPLE_GAP) {
-                return;
-            }
-            if pieces_reaching(u, old, x, q, d.reach) == count[c]
+            !near_pieces(u, new, x, q, d.reach - SAMPLE_GAP)
+                && pieces_reaching(u, old, x, q, d.reach) == count[c]
                 && pieces_reaching(u, new, x, q, d.reach) == 0
-            {
-                lost = true;
-            }
-        });
-        if lost {
-            return true;
-        }
-    }
-    false
+        })
+    })
 }
 
 /// The new vertices of a detour (at most three).
