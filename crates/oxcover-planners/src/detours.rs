@@ -1,22 +1,29 @@
 //! Cheapest-insertion detours: what a finished path leaves uncovered,
-//! covered by bending the path where that costs least.
+//! covered by bending the path where that costs least. Not from the seed
+//! papers: cheapest insertion as in tour heuristics, scored by the
+//! contract's estimated time, with coverage counted exactly as the
+//! contract's samples count it.
 //!
 //! A cell the path misses is within the tool's reach of some plannable
 //! point; the cheapest way to cover it is usually not a separate visit (a
-//! boundary pass's anchor: there and back, a half turn) but one new vertex
-//! on a nearby segment, `a → p → b`, with `p` just within reach of the
-//! cell. Every segment near the cell is tried, with `p` the point of the
-//! cell's reach disc nearest the segment (and, where that point is not in
-//! a plannable cell or either new piece is not clear, the plannable cell
-//! centres within reach), and the one adding the least estimated time
-//! (length over speed, the change of heading at `a`, `p` and `b` over the
-//! turn rate) is inserted. The new vertex's coverage is marked, so one
-//! detour serves a whole cluster of missed cells. Cells no clear detour
-//! reaches are left (the caller's boundary pass visits them).
+//! boundary pass's anchor: there and back, a half turn) but a bend of a
+//! nearby segment: one new vertex `a → p → b`, or a shallow V that leaves
+//! the segment and rejoins it a few reaches either side of `p` (a long
+//! lane keeps most of its line). Every segment near the cell is tried,
+//! with `p` the point of the cell's reach disc nearest the segment, and
+//! where no detour through it is accepted, points of the plannable cells
+//! within reach (a cell's centre, or its point nearest the missed cell:
+//! a slit in a wall is often within reach of boundary cells' edges only).
+//! The cheapest in estimated time (length over speed, heading changes
+//! over the turn rate) that is clear and leaves no cell the segment alone
+//! reached uncovered is inserted; one detour serves a whole cluster of
+//! missed cells. Cells no such detour reaches are left (the caller's
+//! boundary pass visits them).
 //!
-//! [`tighten`] then removes the vertices that detours made unneeded and
-//! moves the others towards the line of their neighbours, each change only
-//! where it is clear, saves time and uncovers nothing.
+//! [`tighten`] then removes the vertices detours made unneeded, moves the
+//! others towards the line of their neighbours or slides them along a
+//! piece, each change only where it is clear, saves time and uncovers
+//! nothing.
 //!
 //! Cost: the path's segments are kept in square buckets (each registered
 //! along its length); a missed cell looks at the segments of the buckets
@@ -249,13 +256,9 @@ fn stroke_until(
     };
     for k in 0..n {
         let (t0, t1) = (k as f64 / n as f64, (k + 1) as f64 / n as f64);
-        let (p0, p1) = (a + ab * t0, a + ab * t1);
-        let c0 = (p0.x.min(p1.x) - r).floor().max(0.0) as usize;
-        let c1 = ((p0.x.max(p1.x) + r).ceil().max(0.0) as usize).min(w);
-        let r0 = (p0.y.min(p1.y) - r).floor().max(0.0) as usize;
-        let r1 = ((p0.y.max(p1.y) + r).ceil().max(0.0) as usize).min(h);
-        for row in r0..r1 {
-            for col in c0..c1 {
+        let (rows, cols) = cell_box(&[a + ab * t0, a + ab * t1], r, (w, h));
+        for row in rows {
+            for col in cols.clone() {
                 let c = Cell::new(row, col);
                 if !want(c) {
                     continue;
@@ -553,6 +556,21 @@ fn box_cells(pts: &[GridPoint], r: f64) -> usize {
     ((hi.x - lo.x + 2.0 * r + 2.0) * (hi.y - lo.y + 2.0 * r + 2.0)).max(0.0) as usize
 }
 
+/// The rows and columns of a `w × h` grid whose centres may lie within
+/// `r` of the box round `pts`.
+fn cell_box(
+    pts: &[GridPoint],
+    r: f64,
+    (w, h): (usize, usize),
+) -> (std::ops::Range<usize>, std::ops::Range<usize>) {
+    let (lo, hi) = bounds(pts);
+    let c0 = (lo.x - r).floor().max(0.0) as usize;
+    let c1 = ((hi.x + r).ceil().max(0.0) as usize).min(w);
+    let r0 = (lo.y - r).floor().max(0.0) as usize;
+    let r1 = ((hi.y + r).ceil().max(0.0) as usize).min(h);
+    (r0..r1, c0..c1)
+}
+
 fn bounds(pts: &[GridPoint]) -> (GridPoint, GridPoint) {
     let mut lo = pts[0];
     let mut hi = pts[0];
@@ -732,30 +750,18 @@ fn changed_cells(
         len
     };
     let u = if len > 0.0 { ab / len } else { Vector::zeros() };
-    let mut lo = a + u * t_lo;
-    let mut hi = lo;
-    for p in via.iter().copied().chain([a + u * t_hi]) {
-        lo = GridPoint::new(lo.x.min(p.x), lo.y.min(p.y));
-        hi = GridPoint::new(hi.x.max(p.x), hi.y.max(p.y));
-    }
-    let c0 = (lo.x - reach).floor().max(0.0) as usize;
-    let c1 = ((hi.x + reach).ceil().max(0.0) as usize).min(grid_w);
-    let r0 = (lo.y - reach).floor().max(0.0) as usize;
-    let r1 = ((hi.y + reach).ceil().max(0.0) as usize).min(grid_h);
-    for row in r0..r1 {
-        for col in c0..c1 {
+    let mut corners = vec![a + u * t_lo, a + u * t_hi];
+    corners.extend_from_slice(via);
+    let (rows, cols) = cell_box(&corners, reach, (grid_w, grid_h));
+    for row in rows {
+        for col in cols.clone() {
             let c = Cell::new(row, col);
             if !want(c) {
                 continue;
             }
             let q = cell_center(c);
             let old = u16::from(sample_reaches(a, b, q, reach));
-            let mut new = 0;
-            let mut prev = a;
-            for &p in via.iter().chain(std::iter::once(&b)) {
-                new += u16::from(sample_reaches(prev, p, q, reach));
-                prev = p;
-            }
+            let new = pieces_reaching(a, via, b, q, reach);
             if old != new && !f(c, old, new) {
                 return;
             }

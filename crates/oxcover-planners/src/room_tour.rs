@@ -250,15 +250,18 @@ pub fn unit_exits(
 ) -> Vec<Option<Cell>> {
     let plannable = problem.plannable();
     let mut wave = Wavefront::new(plannable);
+    // Each unit's cells, gathered in one scan.
+    let mut cells_of: Vec<Vec<Cell>> = vec![Vec::new(); units.count() + 1];
+    for c in units.labels.cells() {
+        if let Some(v) = cells_of.get_mut(units.labels[c] as usize) {
+            v.push(c);
+        }
+    }
     let mut exits = Vec::with_capacity(order.len());
     for w in order.windows(2) {
         let (here, next) = (w[0], w[1]);
-        let sources: Vec<Cell> = units
-            .labels
-            .cells()
-            .filter(|&c| units.labels[c] == next)
-            .collect();
-        let found = cidt(&mut wave, &sources, |c| units.labels[c] == here);
+        let sources = cells_of.get(next as usize).map_or(&[][..], Vec::as_slice);
+        let found = cidt(&mut wave, sources, |c| units.labels[c] == here);
         exits.push(found.map(|f| f.first()));
     }
     exits.push(None);
