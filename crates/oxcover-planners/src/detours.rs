@@ -398,7 +398,7 @@ pub(crate) fn insert_detours(points: &[GridPoint], d: &Detours<'_>) -> (Vec<Grid
 const SLIDES: [f64; 6] = [0.9, 0.75, 0.5, 0.25, 0.1, 0.03];
 
 /// Passes over the path.
-const ROUNDS: usize = 4;
+const ROUNDS: usize = 8;
 
 /// How far towards the line of its neighbours a vertex is tried moved.
 const RELOCATIONS: [f64; 5] = [0.9, 0.75, 0.5, 0.25, 0.1];
