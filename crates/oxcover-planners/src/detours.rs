@@ -541,7 +541,7 @@ fn try_replace(path: &mut Linked, count: &mut Grid<u16>, d: &Detours<'_>, v: usi
 }
 
 /// Seconds to drive `pts`, turning on the spot at each vertex.
-fn polyline_time(pts: &[GridPoint], t: &TimeModel) -> f64 {
+pub(crate) fn polyline_time(pts: &[GridPoint], t: &TimeModel) -> f64 {
     let length: f64 = pts.windows(2).map(|s| (s[1] - s[0]).norm()).sum();
     let rotation: f64 = pts
         .windows(3)

@@ -22,8 +22,11 @@
 //!    wall direction are tried, and the one with the least estimated time
 //!    ([`crate::TimeModel`]: lane and link length over v, π per link over w,
 //!    a turn and a lane spacing per chain, three times the time of lanes for
-//!    the lane-mask area the lanes leave) wins; another angle must beat the
-//!    wall directions by 10 %.
+//!    the lane-mask area the lanes leave) is preferred; another angle must
+//!    beat the wall directions by 10 %. That model cannot see what detours
+//!    and tightening will make of an angle, so the two best (by the model
+//!    plus their ordered transits) are both built to the end, in parallel,
+//!    and the path with the least estimated time is kept.
 //!
 //! **Order.** Loops (entered and left at one of eight points) and chains
 //! (entered at one of four corners, left at the opposite end) are ordered
@@ -53,13 +56,15 @@
 
 use std::f64::consts::PI;
 
+use rayon::prelude::*;
+
 use oxcover_distance::Wavefront;
 use oxcover_grid::edt::center_distance_sq;
 use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear, segment_distance};
 use oxcover_grid::{Cell, Grid};
 
 use crate::buckets::Buckets;
-use crate::detours::{Detours, insert_detours, tighten};
+use crate::detours::{Detours, insert_detours, polyline_time, tighten};
 use crate::error::{Error, Result};
 use crate::metre_path::PathBuilder;
 use crate::planner::{Planner, PlannerOptions};
@@ -126,6 +131,10 @@ const ANGLES_ORDERED: usize = 3;
 /// How much dearer than the cheapest (by its chains) an angle may be and
 /// still have its transits compared.
 const NEAR_TIE: f64 = 1.15;
+/// Of the angles ordered, how many (the cheapest with their transits) are
+/// built to the end (detours, tightening) and compared by the final
+/// path's estimated time.
+const ANGLES_BUILT: usize = 2;
 /// Entry points tried per loop.
 const LOOP_ENTRIES: usize = 8;
 
@@ -210,7 +219,6 @@ fn plan_lanes(
     scored.sort_by(|a, b| a.0.total_cmp(&b.0));
     let exit = input.exit.filter(|&c| plannable.is_set(c)).map(cell_center);
     let mut region = Region::new(plannable);
-    let mut best: Option<(f64, Vec<Chain>, Tour)> = None;
     let cheapest = scored.first().map_or(0.0, |b| b.0);
     let near_ties = scored
         .into_iter()
@@ -218,28 +226,16 @@ fn plan_lanes(
         .enumerate()
         .filter(|(i, (cost, _))| *i == 0 || *cost <= NEAR_TIE * cheapest)
         .map(|(_, c)| c);
+    let mut ordered: Vec<(f64, Vec<Chain>, Tour)> = Vec::new();
     for (cost, chains) in near_ties {
         let mut nodes: Vec<Node> = loops.iter().map(Node::Loop).collect();
         nodes.extend(chains.iter().map(Node::Chain));
         let ends = (cell_center(start), exit);
         let (order, transit) = order_nodes(&nodes, ends, &mut region, &cell_time);
-        let total = cost + transit;
-        if best.as_ref().is_none_or(|b| total < b.0) {
-            best = Some((total, chains, order));
-        }
+        ordered.push((cost + transit, chains, order));
     }
-    let (chains, order) = best.map(|b| (b.1, b.2)).unwrap_or_default();
-    let mut nodes: Vec<Node> = loops.iter().map(Node::Loop).collect();
-    nodes.extend(chains.iter().map(Node::Chain));
+    ordered.sort_by(|a, b| a.0.total_cmp(&b.0));
     let loop_tolerance = (tool / 2.0).clamp(LOOP_TOLERANCE.0, LOOP_TOLERANCE.1);
-
-    let mut path = PathBuilder::new(plannable, start);
-    for (node, option) in order {
-        match nodes[node] {
-            Node::Loop(l) => drive_loop(&mut path, l, option, loop_tolerance)?,
-            Node::Chain(c) => drive_chain(&mut path, c, option)?,
-        }
-    }
     // What the straightened loops and the lanes' ends pass just out of
     // reach: covered by bending the path where that costs least (within
     // five tool radii of a segment).
@@ -251,12 +247,40 @@ fn plan_lanes(
         search: 5.0 * tool,
         time: cell_time,
     };
-    let (points, count) = insert_detours(path.points(), &detours);
-    // Then the vertices detours made unneeded go, and the rest move
-    // towards the line of their neighbours, where coverage allows.
-    let (points, _) = tighten(&points, &detours, count);
-    path.replace(points);
-    path.cover_leftovers(input.coarse, input.visit_radius())?;
+    // The model above misjudges what detours and tightening will make of
+    // an angle, so the best few are built to the end (in parallel, the
+    // first of equal times winning) and the fastest path is kept.
+    let build = |(_, chains, order): &(f64, Vec<Chain>, Tour)| -> Result<(f64, PathBuilder<'_>)> {
+        let mut nodes: Vec<Node> = loops.iter().map(Node::Loop).collect();
+        nodes.extend(chains.iter().map(Node::Chain));
+        let mut path = PathBuilder::new(plannable, start);
+        for &(node, option) in order {
+            match nodes[node] {
+                Node::Loop(l) => drive_loop(&mut path, l, option, loop_tolerance)?,
+                Node::Chain(c) => drive_chain(&mut path, c, option)?,
+            }
+        }
+        let (points, count) = insert_detours(path.points(), &detours);
+        // Then the vertices detours made unneeded go, and the rest move
+        // towards the line of their neighbours, where coverage allows.
+        let (points, _) = tighten(&points, &detours, count);
+        path.replace(points);
+        path.cover_leftovers(input.coarse, input.visit_radius())?;
+        let to_exit = exit.map_or(0.0, |e| cell_time.time((e - path.last()).norm(), 0.0));
+        Ok((polyline_time(path.points(), &cell_time) + to_exit, path))
+    };
+    let built: Vec<Result<(f64, PathBuilder<'_>)>> =
+        ordered.par_iter().take(ANGLES_BUILT).map(build).collect();
+    let mut best: Option<(f64, PathBuilder<'_>)> = None;
+    for b in built {
+        let b = b?;
+        if best.as_ref().is_none_or(|x| b.0 < x.0) {
+            best = Some(b);
+        }
+    }
+    let Some((_, path)) = best else {
+        return Ok(Vec::new());
+    };
     Ok(path.into_metres(&input.frame))
 }
 
