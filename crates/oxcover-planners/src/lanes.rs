@@ -1178,6 +1178,31 @@ mod tests {
         oxcover_grid::io::ascii_mask(rows).expect("valid map")
     }
 
+    /// The angles built in parallel give the same path on one thread as on
+    /// four: a square room with a pillar, where both axes are near ties.
+    #[test]
+    fn the_path_does_not_depend_on_the_thread_count() {
+        let mut rows = vec![".".repeat(24); 24];
+        for r in rows.iter_mut().take(14).skip(10) {
+            r.replace_range(9..13, "####");
+        }
+        let text = rows.join("\n");
+        let (map, _) = parse_ascii(&text).expect("valid map");
+        let problem =
+            CoverageProblem::new(&map, DiscRobot::new(1.5, 1.5).expect("robot"), Start::First)
+                .expect("problem");
+        let on = |threads: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("pool")
+                .install(|| plan_lanes(&problem.input(0), None).expect("plan"))
+        };
+        let one = on(1);
+        assert!(one.len() > 8, "{one:?}");
+        assert_eq!(one, on(4));
+    }
+
     #[test]
     fn a_rectangle_has_one_loop_of_its_border() {
         let m = mask(&["....", "....", "...."]);
