@@ -132,7 +132,7 @@ fn foot_on(a: GridPoint, b: GridPoint, m: GridPoint) -> GridPoint {
 }
 
 /// Absolute heading change (rad) from `u` to `v`; 0 when either is null.
-fn heading_change(u: Vector, v: Vector) -> f64 {
+pub(crate) fn heading_change(u: Vector, v: Vector) -> f64 {
     if u.norm() < 1e-12 || v.norm() < 1e-12 {
         return 0.0;
     }

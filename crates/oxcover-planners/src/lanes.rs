@@ -61,10 +61,10 @@ use rayon::prelude::*;
 use oxcover_distance::Wavefront;
 use oxcover_grid::edt::center_distance_sq;
 use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear, segment_distance};
-use oxcover_grid::{Cell, Grid};
+use oxcover_grid::{Cell, Grid, Vector};
 
 use crate::buckets::Buckets;
-use crate::detours::{Detours, insert_detours, polyline_time, tighten};
+use crate::detours::{Detours, heading_change, insert_detours, polyline_time, tighten};
 use crate::error::{Error, Result};
 use crate::metre_path::PathBuilder;
 use crate::planner::{Planner, PlannerOptions};
@@ -859,6 +859,43 @@ impl Node<'_> {
         }
     }
 
+    /// The directions option `k` is entered and left along (zero where a
+    /// node is a single point). A loop's are taken over a few cells, as
+    /// its straightened segments run.
+    fn headings(&self, k: usize) -> (Vector, Vector) {
+        const SPAN: usize = 3;
+        match self {
+            Node::Loop(l) => {
+                let flat: Vec<GridPoint> =
+                    l.pieces.iter().flatten().map(|&c| cell_center(c)).collect();
+                let n = flat.len();
+                if n < 2 {
+                    return (Vector::zeros(), Vector::zeros());
+                }
+                let span = SPAN.min(n - 1);
+                if !l.closed {
+                    let first = flat[span] - flat[0];
+                    let last = flat[n - 1] - flat[n - 1 - span];
+                    return if k == 0 { (first, last) } else { (-last, -first) };
+                }
+                let (p, i) = l.entry(k);
+                let e: usize = l.pieces[..p].iter().map(Vec::len).sum::<usize>() + i;
+                (
+                    flat[(e + span) % n] - flat[e],
+                    flat[e] - flat[(e + n - span) % n],
+                )
+            }
+            Node::Chain(c) => {
+                let seq = c.sequence(k);
+                let n = seq.len();
+                if n < 2 {
+                    return (Vector::zeros(), Vector::zeros());
+                }
+                (seq[1] - seq[0], seq[n - 1] - seq[n - 2])
+            }
+        }
+    }
+
     /// The option driving the same work backwards (exit and entry swapped).
     fn reversed(&self, k: usize) -> usize {
         match self {
@@ -891,6 +928,10 @@ struct Transits {
     /// measured.
     ratio: Option<Vec<f32>>,
     speed: f64,
+    /// Directions each node's option is entered and left along.
+    headings: Vec<Vec<(Vector, Vector)>>,
+    /// Turning rate (rad/s).
+    turn_rate: f64,
 }
 
 /// The region the transit table searches, with a wavefront to reuse
@@ -973,13 +1014,35 @@ impl Transits {
             }
             r
         });
+        let headings = nodes
+            .iter()
+            .map(|n| (0..n.options()).map(|k| n.headings(k)).collect())
+            .collect();
         Self {
             ids,
             end,
             points,
             ratio,
             speed: t.linear_speed,
+            headings,
+            turn_rate: t.angular_speed,
         }
+    }
+
+    /// Seconds of turning from leaving `prev` by option `q` to entering
+    /// `node` by option `k`: onto the straight line between the two ends
+    /// and off it again (or straight from one heading to the other where
+    /// the ends meet).
+    fn junction(&self, prev: usize, q: usize, node: usize, k: usize) -> f64 {
+        let out = self.headings[prev][q].1;
+        let into = self.headings[node][k].0;
+        let d = self.points[self.ids[node][k].0] - self.points[self.ids[prev][q].1];
+        let turn = if d.norm() < 1.0 {
+            heading_change(out, into)
+        } else {
+            heading_change(out, d) + heading_change(d, into)
+        };
+        turn / self.turn_rate
     }
 
     /// Seconds from point `from` to point `to`.
@@ -1139,7 +1202,8 @@ fn best_options(nodes: &[Node<'_>], tour: &mut [(usize, usize)], transits: &Tran
                 (0..layers[i - 1].len())
                     .map(|q| {
                         let out = transits.exit(prev, q);
-                        (layers[i - 1][q].0 + transits.entering(out, node, k), q)
+                        let turn = transits.junction(prev, q, node, k);
+                        (layers[i - 1][q].0 + transits.entering(out, node, k) + turn, q)
                     })
                     .min_by(|a, b| a.0.total_cmp(&b.0))
                     .unwrap_or((f64::INFINITY, 0))
