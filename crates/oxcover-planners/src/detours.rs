@@ -235,7 +235,9 @@ fn for_stroke_cells(
 
 /// [`for_stroke_cells`] over the cells `want` accepts (asked before any
 /// geometry), stopping at the first cell for which `stop` returns `true`;
-/// returns whether one did.
+/// returns whether one did. Row by row over the capsule round the segment
+/// (its discs at the ends and the band between), so that no cell outside
+/// it is looked at.
 fn stroke_until(
     a: GridPoint,
     b: GridPoint,
@@ -244,41 +246,93 @@ fn stroke_until(
     want: impl Fn(Cell) -> bool,
     mut stop: impl FnMut(Cell) -> bool,
 ) -> bool {
-    let ab = b - a;
-    let len = ab.norm();
-    let n = (len / (2.0 * r).max(1.0)).ceil().max(1.0) as usize;
-    let param = |q: GridPoint| {
-        if len > 0.0 {
-            ((q - a).dot(&ab) / (len * len)).clamp(0.0, 1.0)
-        } else {
-            0.0
+    // A hair wider than `r`: the exact tests below decide.
+    let rr = r + 1e-7;
+    let row0 = (a.y.min(b.y) - rr - 0.5).ceil().max(0.0) as usize;
+    let row1 = (a.y.max(b.y) + rr - 0.5).floor();
+    if row1 < 0.0 {
+        return false;
+    }
+    let row1 = (row1 as usize).min(h.saturating_sub(1));
+    for row in row0..=row1 {
+        let y = row as f64 + 0.5;
+        let Some((x0, x1)) = capsule_span(a, b, rr, y) else {
+            continue;
+        };
+        let c0 = (x0 - 0.5).ceil().max(0.0) as usize;
+        let c1 = (x1 - 0.5).floor();
+        if c1 < 0.0 {
+            continue;
         }
-    };
-    for k in 0..n {
-        let (t0, t1) = (k as f64 / n as f64, (k + 1) as f64 / n as f64);
-        let (rows, cols) = cell_box(&[a + ab * t0, a + ab * t1], r, (w, h));
-        for row in rows {
-            for col in cols.clone() {
-                let c = Cell::new(row, col);
-                if !want(c) {
-                    continue;
-                }
-                let q = cell_center(c);
-                let t = param(q);
-                let mine = t >= t0 && (t < t1 || k + 1 == n);
-                if !mine {
-                    continue;
-                }
-                // Well within reach of the segment, a sample reaches too;
-                // beyond it, none does; between, the samples decide.
-                let gap = segment_distance(a, b, q);
-                if (gap <= r - SAMPLE_GAP || (gap <= r && sample_reaches(a, b, q, r))) && stop(c) {
-                    return true;
-                }
+        let c1 = (c1 as usize).min(w.saturating_sub(1));
+        for col in c0..=c1 {
+            let c = Cell::new(row, col);
+            if !want(c) {
+                continue;
+            }
+            let q = cell_center(c);
+            // Well within reach of the segment, a sample reaches too;
+            // beyond it, none does; between, the samples decide.
+            let gap = segment_distance(a, b, q);
+            if (gap <= r - SAMPLE_GAP || (gap <= r && sample_reaches(a, b, q, r))) && stop(c) {
+                return true;
             }
         }
     }
     false
+}
+
+/// The x extent of the points of the line at height `y` within `r` of the
+/// segment `a → b` (the capsule is convex: one interval, the hull of its
+/// end discs' and its band's).
+fn capsule_span(a: GridPoint, b: GridPoint, r: f64, y: f64) -> Option<(f64, f64)> {
+    let mut lo = f64::INFINITY;
+    let mut hi = f64::NEG_INFINITY;
+    for p in [a, b] {
+        let dy = y - p.y;
+        if dy.abs() <= r {
+            let s = (r * r - dy * dy).sqrt();
+            lo = lo.min(p.x - s);
+            hi = hi.max(p.x + s);
+        }
+    }
+    let ab = b - a;
+    let len = ab.norm();
+    if len > 0.0 {
+        // Band points a + t·ab + u·n, t in [0, 1], |u| <= r, n the unit
+        // normal: on the line where t(u) = (y - a.y - u·n.y) / ab.y.
+        let n = Vector::new(-ab.y, ab.x) / len;
+        let (mut u0, mut u1) = (-r, r);
+        if ab.y.abs() < 1e-12 {
+            // Horizontal: the line meets the band where |y - a.y| <= r.
+            if (y - a.y).abs() <= r {
+                lo = lo.min(a.x.min(b.x));
+                hi = hi.max(a.x.max(b.x));
+            }
+        } else {
+            // 0 <= (y - a.y - u·n.y) / ab.y <= 1, as bounds on u.
+            let (k, m) = ((y - a.y) / ab.y, n.y / ab.y);
+            // t(u) = k - m·u.
+            if m.abs() < 1e-12 {
+                if !(0.0..=1.0).contains(&k) {
+                    u1 = u0 - 1.0;
+                }
+            } else {
+                let (ua, ub) = (k / m, (k - 1.0) / m);
+                u0 = u0.max(ua.min(ub));
+                u1 = u1.min(ua.max(ub));
+            }
+            if u0 <= u1 {
+                for u in [u0, u1] {
+                    let t = k - m * u;
+                    let x = a.x + t * ab.x + u * n.x;
+                    lo = lo.min(x);
+                    hi = hi.max(x);
+                }
+            }
+        }
+    }
+    (lo <= hi).then_some((lo, hi))
 }
 
 /// How many segments of `points` reach each cell (a contract sample
@@ -504,6 +558,9 @@ fn try_replace(path: &mut Linked, count: &mut Grid<u16>, d: &Detours<'_>, v: usi
         moves.push(Some(off_edges(pv + (px - pv) * f)));
     }
     let (w, h) = (count.width(), count.height());
+    // The coverable cells only `v`'s two pieces reach: the same for every
+    // move, found once (at the first move that saves time and is clear).
+    let mut lone: Option<Vec<GridPoint>> = None;
     for m in moves {
         let mid: Vec<GridPoint> = m.into_iter().collect();
         if local(&mid) >= here - 1e-9 {
@@ -517,7 +574,11 @@ fn try_replace(path: &mut Linked, count: &mut Grid<u16>, d: &Detours<'_>, v: usi
                     && segment_clear(d.plannable, q, px)
             }
         };
-        if !clear || replacement_uncovers(d, count, pu, &[pv], &mid, px) {
+        if !clear {
+            continue;
+        }
+        let lone = lone.get_or_insert_with(|| reached_only_by(d, count, pu, &[pv], px));
+        if loses_any(lone, pu, &mid, px, d.reach) {
             continue;
         }
         for (a, b) in pieces(pu, &[pv], px) {
@@ -618,29 +679,38 @@ fn pieces(u: GridPoint, mid: &[GridPoint], x: GridPoint) -> Vec<(GridPoint, Grid
     out
 }
 
-/// Whether replacing `u → old… → x` by `u → new… → x` leaves a coverable
-/// cell that only the old pieces reached out of reach (only the old
-/// pieces' strokes are looked at: nothing else can be lost).
-fn replacement_uncovers(
+/// The centres of the coverable cells that the pieces `u → old… → x` reach
+/// and no other piece of the path does (the only cells a replacement of
+/// those pieces can leave out of reach).
+fn reached_only_by(
     d: &Detours<'_>,
     count: &Grid<u16>,
     u: GridPoint,
     old: &[GridPoint],
-    new: &[GridPoint],
     x: GridPoint,
-) -> bool {
+) -> Vec<GridPoint> {
     let size = (count.width(), count.height());
-    // Only a coverable cell no other piece reaches can be lost.
     let at_risk = |c: Cell| d.coverable[c] && count[c] <= old.len() as u16 + 1;
-    pieces(u, old, x).into_iter().any(|(a, b)| {
+    let mut out = Vec::new();
+    for (a, b) in pieces(u, old, x) {
         stroke_until(a, b, d.reach, size, at_risk, |c| {
             let q = cell_center(c);
-            // Well within reach of a new piece: one of its samples (at
-            // most ¼ cell apart) reaches it too.
-            !near_pieces(u, new, x, q, d.reach - SAMPLE_GAP)
-                && pieces_reaching(u, old, x, q, d.reach) == count[c]
-                && pieces_reaching(u, new, x, q, d.reach) == 0
-        })
+            if pieces_reaching(u, old, x, q, d.reach) == count[c] {
+                out.push(q);
+            }
+            false
+        });
+    }
+    out
+}
+
+/// Whether the pieces `u → new… → x` leave any of the cells centred at
+/// `lone` out of reach.
+fn loses_any(lone: &[GridPoint], u: GridPoint, new: &[GridPoint], x: GridPoint, r: f64) -> bool {
+    lone.iter().any(|&q| {
+        // Well within reach of a new piece: one of its samples (at most ¼
+        // cell apart) reaches it too.
+        !near_pieces(u, new, x, q, r - SAMPLE_GAP) && pieces_reaching(u, new, x, q, r) == 0
     })
 }
 
@@ -1026,6 +1096,31 @@ mod tests {
 
     proptest! {
         #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+        /// The row-by-row stroke visits exactly the cells a scan of the
+        /// whole grid finds reached, each once.
+        #[test]
+        fn stroke_rows_match_a_whole_grid_scan(
+            ax in -2.0..22.0f64, ay in -2.0..18.0f64, bx in -2.0..22.0f64, by in -2.0..18.0f64,
+            r in 0.3..4.0f64, flat in 0usize..3,
+        ) {
+            // Some segments exactly horizontal or vertical.
+            let b = match flat {
+                0 => GridPoint::new(bx, ay),
+                1 => GridPoint::new(ax, by),
+                _ => GridPoint::new(bx, by),
+            };
+            let a = GridPoint::new(ax, ay);
+            let (w, h) = (20usize, 16usize);
+            let mut seen = Grid::new(w, h, 0u8);
+            for_stroke_cells(a, b, r, w, h, |c| seen[c] += 1);
+            for c in seen.cells() {
+                let q = cell_center(c);
+                let gap = segment_distance(a, b, q);
+                let reached = gap <= r - SAMPLE_GAP || (gap <= r && sample_reaches(a, b, q, r));
+                prop_assert_eq!(seen[c], u8::from(reached), "{:?}", c);
+            }
+        }
 
         /// The sample test agrees with the contract's sampler.
         #[test]

@@ -876,7 +876,11 @@ impl Node<'_> {
                 if !l.closed {
                     let first = flat[span] - flat[0];
                     let last = flat[n - 1] - flat[n - 1 - span];
-                    return if k == 0 { (first, last) } else { (-last, -first) };
+                    return if k == 0 {
+                        (first, last)
+                    } else {
+                        (-last, -first)
+                    };
                 }
                 let (p, i) = l.entry(k);
                 let e: usize = l.pieces[..p].iter().map(Vec::len).sum::<usize>() + i;
@@ -1203,7 +1207,10 @@ fn best_options(nodes: &[Node<'_>], tour: &mut [(usize, usize)], transits: &Tran
                     .map(|q| {
                         let out = transits.exit(prev, q);
                         let turn = transits.junction(prev, q, node, k);
-                        (layers[i - 1][q].0 + transits.entering(out, node, k) + turn, q)
+                        (
+                            layers[i - 1][q].0 + transits.entering(out, node, k) + turn,
+                            q,
+                        )
                     })
                     .min_by(|a, b| a.0.total_cmp(&b.0))
                     .unwrap_or((f64::INFINITY, 0))
