@@ -22,8 +22,10 @@
 //!
 //! [`tighten`] then removes the vertices detours made unneeded, moves the
 //! others towards the line of their neighbours or slides them along a
-//! piece, each change only where it is clear, saves time and uncovers
-//! nothing.
+//! piece: of the changes at a vertex that are clear, save time and
+//! uncover nothing, the one saving the most. Over a densely traced edge
+//! loop this, not the first straightening, is what takes out the turns of
+//! a ragged wall.
 //!
 //! Cost: the path's segments are kept in square buckets (each registered
 //! along its length); a missed cell looks at the segments of the buckets
