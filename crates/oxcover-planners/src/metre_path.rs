@@ -23,8 +23,10 @@ use crate::error::{Error, Result};
 #[derive(Debug)]
 pub(crate) struct PathBuilder<'a> {
     plannable: &'a Grid<bool>,
-    wave: Wavefront,
-    astar: AStar,
+    /// Made when first needed (a builder that only follows walks needs
+    /// neither: allocating them per transit was most of a room tour's cost).
+    wave: Option<Wavefront>,
+    astar: Option<AStar>,
     points: Vec<GridPoint>,
     /// The least distance (cells) a new straight piece keeps from
     /// non-plannable cells; `None` = only exact traversal.
@@ -36,8 +38,8 @@ impl<'a> PathBuilder<'a> {
     pub(crate) fn new(plannable: &'a Grid<bool>, start: Cell) -> Self {
         Self {
             plannable,
-            wave: Wavefront::new(plannable),
-            astar: AStar::new(plannable),
+            wave: None,
+            astar: None,
             points: vec![cell_center(start)],
             clearance: None,
         }
@@ -113,7 +115,9 @@ impl<'a> PathBuilder<'a> {
 
     /// A shortest 4-connected route `a ..= b` of plannable cells (A*).
     fn route(&mut self, a: Cell, b: Cell) -> Result<Vec<Cell>> {
+        let plannable = self.plannable;
         self.astar
+            .get_or_insert_with(|| AStar::new(plannable))
             .route(a, b)
             .ok_or_else(|| Error::Internal(format!("no route {a:?} -> {b:?}")))
     }
@@ -219,11 +223,12 @@ impl<'a> PathBuilder<'a> {
             let Some(here) = cell_of(self.plannable, self.last()) else {
                 return Err(Error::Internal("path left the grid".into()));
             };
-            let Some(near) = cidt(&mut self.wave, &[here], |c| wanted[c]) else {
+            let plannable = self.plannable;
+            let wave = self.wave.get_or_insert_with(|| Wavefront::new(plannable));
+            let Some(near) = cidt(wave, &[here], |c| wanted[c]) else {
                 return Ok(());
             };
-            let route = self
-                .wave
+            let route = wave
                 .retrace(near.first())
                 .ok_or_else(|| Error::Internal("leftover retrace failed".into()))?;
             if route.len() == 1 {

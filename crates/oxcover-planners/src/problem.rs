@@ -384,9 +384,29 @@ impl CoverageProblem {
     /// # Errors
     /// [`Error::Internal`] when no target is reachable from `from`.
     pub fn transit(&self, from: Cell, is_target: impl FnMut(Cell) -> bool) -> Result<Transit> {
+        self.transit_reusing(&mut self.transit_wavefront(), from, is_target)
+    }
+
+    /// A wavefront for [`Self::transit_reusing`].
+    #[must_use]
+    pub fn transit_wavefront(&self) -> Wavefront {
+        Wavefront::new(&self.cells.reachable)
+    }
+
+    /// [`Self::transit`] with a wavefront from [`Self::transit_wavefront`]
+    /// kept between calls: each search then costs the cells it touches, not
+    /// the map's size (a tour of hundreds of rooms makes hundreds).
+    ///
+    /// # Errors
+    /// As [`Self::transit`].
+    pub fn transit_reusing(
+        &self,
+        wave: &mut Wavefront,
+        from: Cell,
+        is_target: impl FnMut(Cell) -> bool,
+    ) -> Result<Transit> {
         let plannable = &self.cells.reachable;
-        let mut wave = Wavefront::new(plannable);
-        let near = cidt(&mut wave, &[from], is_target)
+        let near = cidt(wave, &[from], is_target)
             .ok_or_else(|| Error::Internal(format!("no target reachable from {from:?}")))?;
         let cells = wave
             .retrace(near.first())

@@ -584,11 +584,12 @@ fn plan_rooms(
     let mut boundary_length_m = 0.0;
     let mut here = problem.start_cell();
     let mut stretches = Vec::with_capacity(order.len());
+    let mut wave = problem.transit_wavefront();
     for (i, &u) in order.iter().enumerate() {
         let (entry, prefix) = if i == 0 {
             (here, start_prefix(problem))
         } else {
-            let t = problem.transit(here, |c| units.labels[c] == u)?;
+            let t = problem.transit_reusing(&mut wave, here, |c| units.labels[c] == u)?;
             let entry = t.cells.last().copied().unwrap_or(here);
             cells.extend(t.cells.iter().skip(1).copied());
             let mut prefix = t.points;
