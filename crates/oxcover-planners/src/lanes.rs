@@ -278,9 +278,7 @@ fn plan_lanes(
             best = Some(b);
         }
     }
-    let Some((_, path)) = best else {
-        return Ok(Vec::new());
-    };
+    let (_, path) = best.ok_or_else(|| Error::Internal("no lane angle was built".into()))?;
     Ok(path.into_metres(&input.frame))
 }
 
