@@ -32,7 +32,9 @@
 //! (entered at one of four corners, left at the opposite end) are ordered
 //! by a small generalised TSP: nearest neighbour over every entry, 2-opt on
 //! the order (a reversed stretch drives its chains backwards), then an
-//! exact dynamic programme choosing every node's entry for that order. All
+//! exact dynamic programme choosing every node's entry for that order, its
+//! costs counting the turns at each junction too (off a node onto the
+//! straight line to the next entry, and off that line into the node). All
 //! costs are estimated seconds.
 //!
 //! Links that are not straight and clear take the shortest route,
