@@ -34,7 +34,7 @@
 //! be a door (the survey cuts at every critical point and merges afterwards
 //! by heuristics on room shape); [`RoomParams::max_area_m2`] plays no part.
 
-use std::collections::{BTreeMap, VecDeque};
+use std::collections::VecDeque;
 
 use oxcover_grid::edt::boundary_distance_sq4;
 use oxcover_grid::{Cell, Grid};
@@ -162,19 +162,20 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     // Relabel: rooms of at least the smallest area first, then the smaller
     // free regions (isolated specks no door joins), each in row-major order
     // of first cells.
-    let mut size: BTreeMap<u32, usize> = BTreeMap::new();
+    // Labels are small integers: per-label tables are plain vectors.
+    let top = labels.cells().map(|c| labels[c]).max().unwrap_or(0) as usize;
+    let mut size = vec![0usize; top + 1];
     let mut first: Vec<u32> = Vec::new();
     for c in labels.cells() {
         let l = labels[c];
         if l != 0 {
-            let e = size.entry(l).or_insert(0);
-            if *e == 0 {
+            if size[l as usize] == 0 {
                 first.push(l);
             }
-            *e += 1;
+            size[l as usize] += 1;
         }
     }
-    let big = |l: &u32| size[l] as f64 >= min_cells;
+    let big = |l: &u32| size[*l as usize] as f64 >= min_cells;
     let order: Vec<u32> = first
         .iter()
         .filter(|l| big(l))
@@ -182,16 +183,15 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
         .copied()
         .collect();
     let seeded = first.iter().filter(|l| big(l)).count();
-    let fresh: BTreeMap<u32, u32> = order
-        .iter()
-        .enumerate()
-        .map(|(i, &l)| (l, i as u32 + 1))
-        .collect();
+    let mut fresh = vec![0u32; top + 1];
+    for (i, &l) in order.iter().enumerate() {
+        fresh[l as usize] = i as u32 + 1;
+    }
     let mut areas = vec![0usize; order.len()];
     for c in labels.cells() {
         let l = labels[c];
         if l != 0 {
-            let id = fresh[&l];
+            let id = fresh[l as usize];
             areas[id as usize - 1] += 1;
             labels[c] = id;
         }

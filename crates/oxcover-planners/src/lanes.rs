@@ -196,8 +196,9 @@ fn plan_lanes(
         }
     };
     let mask_area = lane_mask.count_true() as f64;
-    let mut scored: Vec<(f64, Vec<Chain>)> = Vec::with_capacity(candidates.len());
-    for (i, &theta) in candidates.iter().enumerate() {
+    // Each angle's chains and modelled time, in parallel (in the order of
+    // `candidates` whatever the thread count).
+    let score = |(i, &theta): (usize, &f64)| {
         let (chains, step) = chains_at(plannable, &lane_mask, theta, spacing);
         let mut cost = chains
             .iter()
@@ -212,8 +213,9 @@ fn plan_lanes(
         if i >= 2 {
             cost *= WALL_PREFERENCE;
         }
-        scored.push((cost, chains));
-    }
+        (cost, chains)
+    };
+    let mut scored: Vec<(f64, Vec<Chain>)> = candidates.par_iter().enumerate().map(score).collect();
     // The cheapest few angles, where near ties, are compared with their
     // transits too: the order of loops and chains from the start to the
     // exit (a direction that leaves a door's stub as chains of its own, or

@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
-use oxcover_decomp::{RoomParams, voronoi};
+use oxcover_decomp::{RoomParams, Rooms, voronoi};
 use oxcover_grid::io::{ReadOptions, read_map};
 use oxcover_grid::{Cell, Coverability, DiscRobot, OccupancyGrid, Point, components4};
 use oxcover_planners::{
@@ -382,12 +382,14 @@ impl PlanOutcome {
 pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
     request.check_memory(map, "map")?;
     let t0 = Instant::now();
-    let problem = request.problem(map)?;
-    let units = if request.rooms {
-        Some(room_units(map, &problem))
-    } else {
-        None
-    };
+    // The segmentation needs only the map: found while the problem is
+    // built (same result whatever the thread count).
+    let (problem, rooms) = rayon::join(
+        || request.problem(map),
+        || request.rooms.then(|| room_labels(map)),
+    );
+    let problem = problem?;
+    let units = rooms.map(|rooms| units_of(&problem, &rooms));
     match units.filter(|u| u.count() > 1) {
         Some(units) => plan_rooms(&problem, &units, request, t0),
         None => plan_whole(&problem, request, t0),
@@ -412,9 +414,19 @@ pub const MIN_UNIT_M2: f64 = 6.0;
 /// planning the hall at once on most ROS maps (`docs/efficiency.md`).
 #[must_use]
 pub fn room_units(map: &OccupancyGrid, problem: &CoverageProblem) -> RoomUnits {
-    let rooms = voronoi(&map.free_mask(), &RoomParams::indoor(map.resolution()));
+    units_of(problem, &room_labels(map))
+}
+
+/// The rooms [`room_units`] splits: the medial-axis segmentation of `map`'s
+/// free cells with indoor defaults.
+fn room_labels(map: &OccupancyGrid) -> Rooms {
+    voronoi(&map.free_mask(), &RoomParams::indoor(map.resolution()))
+}
+
+/// The units of `rooms` for `problem` (see [`room_units`]).
+fn units_of(problem: &CoverageProblem, rooms: &Rooms) -> RoomUnits {
     let block = problem.block();
-    let res = map.resolution();
+    let res = problem.frame().resolution();
     let min = ((MIN_UNIT_M2 / (res * res)) as usize).max(4 * block * block);
     RoomUnits::new(problem.plannable(), &rooms.labels, min)
 }
