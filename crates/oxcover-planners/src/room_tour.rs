@@ -14,6 +14,8 @@
 //! centroid), then an open tour ([`crate::tour::open_tour`]: exact up to a
 //! dozen units, nearest neighbour with 2-opt and Or-opt beyond).
 
+use rayon::prelude::*;
+
 use oxcover_decomp::merge_small_regions;
 use oxcover_distance::{Wavefront, cidt};
 use oxcover_grid::{Cell, Grid};
@@ -154,19 +156,23 @@ pub fn room_order(problem: &CoverageProblem, units: &RoomUnits) -> Vec<u32> {
     // may lie in a coverage cell represented elsewhere: same cell then).
     let passable = coarse.passable();
     let at: Vec<Cell> = anchors.iter().map(|&a| coarse.coarse_of(a)).collect();
-    let mut wave = Wavefront::with_moves(&passable, coarse.moves());
+    // One wavefront per unit, in parallel (rows of the matrix in order,
+    // whatever the thread count).
     let mut dist = vec![f64::INFINITY; n * n];
-    for i in 0..n {
-        if !passable[at[i]] {
-            continue;
-        }
-        wave.propagate(&[at[i]]);
-        for j in 0..n {
-            if let Some(d) = wave.distance(at[j]) {
-                dist[i * n + j] = f64::from(d) * block * res;
+    dist.par_chunks_mut(n).enumerate().for_each_init(
+        || Wavefront::with_moves(&passable, coarse.moves()),
+        |wave, (i, row)| {
+            if !passable[at[i]] {
+                return;
             }
-        }
-    }
+            wave.propagate(&[at[i]]);
+            for (j, d) in row.iter_mut().enumerate() {
+                if let Some(k) = wave.distance(at[j]) {
+                    *d = f64::from(k) * block * res;
+                }
+            }
+        },
+    );
     let straight = |i: usize, j: usize| {
         let (a, b) = (anchors[i], anchors[j]);
         (a.row as f64 - b.row as f64).hypot(a.col as f64 - b.col as f64) * res
