@@ -72,7 +72,7 @@ mod testing;
 pub mod time;
 pub mod tour;
 
-pub use boundary_pass::{BoundaryRoute, boundary_pass, boundary_tour};
+pub use boundary_pass::{BoundaryRoute, boundary_pass, boundary_tour, boundary_tour_to};
 pub use error::{Error, Result};
 pub use planner::{Planner, PlannerOptions, steps};
 pub use problem::{

@@ -30,7 +30,7 @@ use oxcover_grid::{
     TOLERANCE_CELLS, admissible, components4, coverable_cells, reachable,
 };
 
-use crate::boundary_pass::{BoundaryRoute, boundary_pass, boundary_tour};
+use crate::boundary_pass::{BoundaryRoute, boundary_pass, boundary_tour, boundary_tour_to};
 use crate::error::{Error, Result};
 use crate::metre_path::PathBuilder;
 use crate::time::TimeModel;
@@ -435,6 +435,20 @@ impl CoverageProblem {
     /// As [`boundary_pass`].
     pub fn boundary_tour(&self, points: &[Point], end: Cell) -> Result<BoundaryRoute> {
         boundary_tour(&self.frame, &self.cells, points, end)
+    }
+
+    /// [`Self::boundary_tour`] ending towards the plannable cell `exit`
+    /// ([`boundary_tour_to`]).
+    ///
+    /// # Errors
+    /// As [`boundary_pass`].
+    pub fn boundary_tour_to(
+        &self,
+        points: &[Point],
+        end: Cell,
+        exit: Option<Cell>,
+    ) -> Result<BoundaryRoute> {
+        boundary_tour_to(&self.frame, &self.cells, points, end, exit)
     }
 }
 

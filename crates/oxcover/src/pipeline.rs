@@ -510,11 +510,17 @@ fn plan_region(
         // map-wide pass keeps its nearest-first order (the papers'
         // experiments).
         let (route, (pts, extra)) = if request.rooms {
-            let tour = problem.boundary_tour(&raw, end)?;
+            let tour = problem.boundary_tour_to(&raw, end, exit)?;
             let pass = problem.boundary_pass(&raw, end)?;
             let (a, b) = (appended(&tour, true), appended(&pass, false));
             let from: Vec<Point> = raw.last().copied().into_iter().collect();
-            let time = |p: &[Point]| request.time.polyline(&[from.as_slice(), p].concat());
+            // With the way on to the next room, where there is one.
+            let onward: Vec<Point> = exit.map(|c| frame.cell_center(c)).into_iter().collect();
+            let time = |p: &[Point]| {
+                request
+                    .time
+                    .polyline(&[from.as_slice(), p, onward.as_slice()].concat())
+            };
             if time(&b.0) < time(&a.0) {
                 (pass, b)
             } else {
