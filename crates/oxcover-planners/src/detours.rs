@@ -359,10 +359,26 @@ pub(crate) fn reach_counts(points: &[GridPoint], d: &Detours<'_>) -> Grid<u16> {
     count
 }
 
-/// Adds one to the count of every cell within `r` of `a → b`.
+/// Adds one to the count of every cell a sample of `a → b` reaches (the
+/// contract's samples: [`sample_reaches`]).
 fn count_stroke(count: &mut Grid<u16>, a: GridPoint, b: GridPoint, r: f64) {
     let (w, h) = (count.width(), count.height());
-    for_stroke_cells(a, b, r, w, h, |c| count[c] = count[c].saturating_add(1));
+    for_stroke_cells(a, b, r, w, h, |c| {
+        if sample_reaches(a, b, cell_center(c), r) {
+            count[c] = count[c].saturating_add(1);
+        }
+    });
+}
+
+/// Takes one from the count of every cell a sample of `a → b` reaches (what
+/// [`count_stroke`] added).
+fn uncount_stroke(count: &mut Grid<u16>, a: GridPoint, b: GridPoint, r: f64) {
+    let (w, h) = (count.width(), count.height());
+    for_stroke_cells(a, b, r, w, h, |c| {
+        if sample_reaches(a, b, cell_center(c), r) {
+            count[c] = count[c].saturating_sub(1);
+        }
+    });
 }
 
 /// `points` with detours inserted until every coverable cell is within
@@ -488,7 +504,18 @@ const REMOVAL_BOX: usize = 4_000;
 pub(crate) fn tighten(
     points: &[GridPoint],
     d: &Detours<'_>,
+    count: Grid<u16>,
+) -> (Vec<GridPoint>, usize) {
+    tighten_from(points, d, count, 0)
+}
+
+/// [`tighten`] moving only the vertices from index `first` on (those
+/// before stay where they are, and still count for coverage).
+pub(crate) fn tighten_from(
+    points: &[GridPoint],
+    d: &Detours<'_>,
     mut count: Grid<u16>,
+    first: usize,
 ) -> (Vec<GridPoint>, usize) {
     if points.len() < 3 {
         return (points.to_vec(), 0);
@@ -496,8 +523,8 @@ pub(crate) fn tighten(
     let mut path = Linked::new(points);
     let mut changes = 0;
     // Each pass looks only at the vertices next to a change of the pass
-    // before (the first at all).
-    let mut dirty = vec![true; points.len()];
+    // before (the first at all); the fixed ones never.
+    let mut dirty: Vec<bool> = (0..points.len()).map(|i| i >= first).collect();
     for _round in 0..ROUNDS {
         let mut next_dirty = vec![false; points.len()];
         let mut changed = false;
@@ -510,7 +537,7 @@ pub(crate) fn tighten(
                 changes += 1;
                 changed = true;
                 for k in [u, v, x] {
-                    next_dirty[k] = true;
+                    next_dirty[k] = k >= first;
                 }
             }
             v = x;
@@ -571,7 +598,6 @@ fn try_replace(path: &mut Linked, count: &mut Grid<u16>, d: &Detours<'_>, v: usi
         moves.push(Some(off_edges(pv + (pu - pv) * f)));
         moves.push(Some(off_edges(pv + (px - pv) * f)));
     }
-    let (w, h) = (count.width(), count.height());
     // The coverable cells only `v`'s two pieces reach: the same for every
     // move, found once (at the first move that saves time and is clear).
     let mut lone: Option<Vec<GridPoint>> = None;
@@ -602,9 +628,7 @@ fn try_replace(path: &mut Linked, count: &mut Grid<u16>, d: &Detours<'_>, v: usi
             continue;
         }
         for (a, b) in pieces(pu, &[pv], px) {
-            for_stroke_cells(a, b, d.reach, w, h, |c| {
-                count[c] = count[c].saturating_sub(1);
-            });
+            uncount_stroke(count, a, b, d.reach);
         }
         for (a, b) in pieces(pu, &mid, px) {
             count_stroke(count, a, b, d.reach);

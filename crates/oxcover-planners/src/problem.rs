@@ -31,9 +31,11 @@ use oxcover_grid::{
 };
 
 use crate::boundary_pass::{BoundaryRoute, boundary_pass, boundary_tour, boundary_tour_to};
+use crate::detours::{Detours, reach_counts, tighten_from};
 use crate::error::{Error, Result};
 use crate::metre_path::PathBuilder;
 use crate::time::TimeModel;
+use oxcover_grid::traverse::GridPoint;
 
 /// Where the robot starts.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -437,6 +439,50 @@ impl CoverageProblem {
         boundary_tour(&self.frame, &self.cells, points, end)
     }
 
+    /// `points` (metres, map frame) with the waypoints from index `first`
+    /// on tightened for time, as `lanes` tightens its own path: each
+    /// removed, moved towards the line of its neighbours or slid along a
+    /// piece where that saves estimated time, stays clear of non-plannable
+    /// cells and leaves no coverable cell the whole path reached out of
+    /// reach of the contract's samples. The waypoints before `first` stay
+    /// as they are. Room by room the pipeline tightens each room's
+    /// boundary pass with it.
+    #[must_use]
+    pub fn tighten_from(&self, points: &[Point], first: usize) -> Vec<Point> {
+        if first + 1 >= points.len() {
+            return points.to_vec();
+        }
+        let frame = &self.frame;
+        let grid: Vec<GridPoint> = points
+            .iter()
+            .map(|p| {
+                let (row, col) = frame.fractional_cell(p);
+                GridPoint::new(col + 0.5, row + 0.5)
+            })
+            .collect();
+        let res = frame.resolution();
+        let tool = self.tool_cells().max(0.5);
+        let d = Detours {
+            plannable: self.plannable(),
+            coverable: &self.cells.coverable,
+            // The contract's radius with a tenth of the metrics' tolerance
+            // (1e-9 cells): a route through cell centres reaches cells
+            // exactly a tool radius away, up to the rounding of metres.
+            reach: self.tool_cells() + 0.1 * oxcover_grid::TOLERANCE_CELLS,
+            search: 5.0 * tool,
+            time: TimeModel {
+                linear_speed: self.time.linear_speed / res,
+                angular_speed: self.time.angular_speed,
+            },
+        };
+        let count = reach_counts(&grid, &d);
+        let (tight, _) = tighten_from(&grid, &d, count, first);
+        tight
+            .into_iter()
+            .map(|p| frame.position(p.y - 0.5, p.x - 0.5))
+            .collect()
+    }
+
     /// [`Self::boundary_tour`] ending towards the plannable cell `exit`
     /// ([`boundary_tour_to`]).
     ///
@@ -574,6 +620,99 @@ impl PlannerInput<'_> {
 mod tests {
     use super::*;
     use oxcover_grid::io::parse_ascii;
+
+    /// A walk over the plannable cells' centres from the start (metres),
+    /// each step to a 4-neighbour picked by `steps` (an index, wrapped).
+    fn walk(p: &CoverageProblem, steps: &[usize]) -> Vec<Point> {
+        let mut here = p.start_cell();
+        let mut out = vec![p.frame().cell_center(here)];
+        for &k in steps {
+            let next: Vec<Cell> = p
+                .plannable()
+                .neighbours4(here)
+                .map(|(_, n)| n)
+                .filter(|&n| p.plannable()[n])
+                .collect();
+            if next.is_empty() {
+                break;
+            }
+            here = next[k % next.len()];
+            out.push(p.frame().cell_center(here));
+        }
+        out
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn tightening_keeps_coverage_clearance_and_the_fixed_part(
+            blocked in proptest::collection::vec((0usize..7, 0usize..12), 0..8),
+            steps in proptest::collection::vec(0usize..4, 5..120),
+            // Whole and half cells too: a walk through cell centres then
+            // reaches cells exactly a tool radius away.
+            tool in proptest::prop_oneof![
+                proptest::sample::select(vec![1.0, 1.5, 2.0, 3.0]),
+                0.6f64..2.5
+            ],
+            first in 0usize..20,
+        ) {
+            let mut rows = vec![vec!['.'; 12]; 7];
+            for (r, c) in blocked {
+                if (r, c) != (0, 0) {
+                    rows[r][c] = '#';
+                }
+            }
+            let text: Vec<String> = rows.iter().map(|r| r.iter().collect()).collect();
+            let (map, _) = parse_ascii(&text.join("\n")).unwrap();
+            let p = CoverageProblem::new(&map, DiscRobot::new(0.0, tool).unwrap(), Start::First)
+                .unwrap();
+            let path = walk(&p, &steps);
+            let first = first.min(path.len());
+            let tight = p.tighten_from(&path, first);
+            // The fixed part stays, and the end too.
+            proptest::prop_assert_eq!(&tight[..first], &path[..first]);
+            proptest::prop_assert_eq!(tight.last(), path.last());
+            // Every cell the walk covered (the metrics' own test) still is.
+            let frame = p.frame();
+            let before = oxcover_grid::footprint::covered_cells(frame, &path, tool);
+            let after = oxcover_grid::footprint::covered_cells(frame, &tight, tool);
+            for c in before.true_cells() {
+                proptest::prop_assert!(
+                    !p.cells().coverable[c] || after[c],
+                    "cell {:?} uncovered", c
+                );
+            }
+            // Never off the plannable cells, never slower.
+            for w in tight.windows(2) {
+                let a = frame.fractional_cell(&w[0]);
+                let b = frame.fractional_cell(&w[1]);
+                proptest::prop_assert!(oxcover_grid::traverse::segment_clear(
+                    p.plannable(),
+                    GridPoint::new(a.1 + 0.5, a.0 + 0.5),
+                    GridPoint::new(b.1 + 0.5, b.0 + 0.5),
+                ));
+            }
+            proptest::prop_assert!(p.time().polyline(&tight) <= p.time().polyline(&path) + 1e-9);
+        }
+    }
+
+    #[test]
+    fn a_wiggle_along_a_row_is_taken_out() {
+        // A route up and down a row of cell centres, one cell at a time:
+        // tightening leaves a straight run (the ends), with the same cells
+        // covered.
+        let (map, _) = parse_ascii("........\n........").unwrap();
+        let p =
+            CoverageProblem::new(&map, DiscRobot::new(0.0, 1.0).unwrap(), Start::First).unwrap();
+        let f = p.frame();
+        let mut path: Vec<Point> = (0..8).map(|c| f.cell_center(Cell::new(0, c))).collect();
+        path.push(f.cell_center(Cell::new(1, 7)));
+        let tight = p.tighten_from(&path, 1);
+        assert!(tight.len() < path.len());
+        assert!(p.time().polyline(&tight) < p.time().polyline(&path));
+        let before = oxcover_grid::footprint::covered_cells(f, &path, 1.0);
+        let after = oxcover_grid::footprint::covered_cells(f, &tight, 1.0);
+        assert_eq!(before, after);
+    }
 
     #[test]
     fn block_is_one_tool_diameter() {

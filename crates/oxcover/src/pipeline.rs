@@ -281,7 +281,8 @@ pub struct PlanOutcome {
     /// Metre waypoints (the path file).
     pub points: Vec<Point>,
     /// The fine cell path behind them (for a metre plan: its lead-in and the
-    /// boundary pass only).
+    /// boundary pass only; with rooms on, the boundary pass's cells before
+    /// its waypoints were tightened).
     pub cells: Vec<Cell>,
     /// Scores of the final path.
     pub evaluation: Evaluation,
@@ -532,6 +533,11 @@ fn plan_region(
             (pass, b)
         };
         points.extend(pts);
+        if request.rooms {
+            // Room by room the pass is tightened for time too (its cells
+            // stay those of the route before).
+            points = problem.tighten_from(&points, raw.len());
+        }
         cells.extend(extra);
         Some(route)
     } else {
