@@ -26,9 +26,10 @@
 //! next room (rooms on, measured over the shared maps when introduced: every
 //! grid planner's mean estimated time fell on the ipa floor plans, by
 //! 3–42 s, and on the ROS maps moved by −18 to +3 s; `smooth` went from 3
-//! ROS maps slower with rooms on than off to 1). It then tightens the
-//! pass's waypoints for time ([`crate::CoverageProblem::tighten_from`]),
-//! which a route of cell centres leaves with a turn at almost every anchor.
+//! ROS maps slower with rooms on than off to 1). It tightens that tour and
+//! the nearest-first pass for time
+//! ([`crate::CoverageProblem::tighten_from`]: a route of cell centres turns
+//! at almost every anchor) and keeps the faster.
 
 use oxcover_distance::{Wavefront, cidt};
 use oxcover_grid::footprint::{mark_covered, mark_disc};

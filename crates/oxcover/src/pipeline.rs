@@ -510,34 +510,37 @@ fn plan_region(
         // pass where that is faster (estimated time from the plan's end); the
         // map-wide pass keeps its nearest-first order (the papers'
         // experiments).
-        let (route, (pts, extra)) = if request.rooms {
+        let (route, whole, extra) = if request.rooms {
             let tour = problem.boundary_tour_to(&raw, end, exit)?;
             let pass = problem.boundary_pass(&raw, end)?;
             let (a, b) = (appended(&tour, true), appended(&pass, false));
-            let from: Vec<Point> = raw.last().copied().into_iter().collect();
-            // With the way on to the next room, where there is one.
+            // Each tightened for time (as `lanes` tightens its path; the
+            // two in parallel), then the faster kept, with the way on to the
+            // next room where there is one.
+            let tightened = |tail: &[Point]| {
+                problem.tighten_from(&[points.as_slice(), tail].concat(), points.len())
+            };
+            let (ta, tb) = rayon::join(|| tightened(&a.0), || tightened(&b.0));
             let onward: Vec<Point> = exit.map(|c| frame.cell_center(c)).into_iter().collect();
-            let time = |p: &[Point]| {
+            let time = |whole: &[Point]| {
+                let from = points.len().saturating_sub(1);
                 request
                     .time
-                    .polyline(&[from.as_slice(), p, onward.as_slice()].concat())
+                    .polyline(&[&whole[from.min(whole.len())..], onward.as_slice()].concat())
             };
-            if time(&b.0) < time(&a.0) {
-                (pass, b)
+            if time(&tb) < time(&ta) {
+                (pass, tb, b.1)
             } else {
-                (tour, a)
+                (tour, ta, a.1)
             }
         } else {
             let pass = problem.boundary_pass(&raw, end)?;
-            let b = appended(&pass, false);
-            (pass, b)
+            let (pts, extra) = appended(&pass, false);
+            let mut whole = points.clone();
+            whole.extend(pts);
+            (pass, whole, extra)
         };
-        points.extend(pts);
-        if request.rooms {
-            // Room by room the pass is tightened for time too (its cells
-            // stay those of the route before).
-            points = problem.tighten_from(&points, raw.len());
-        }
+        points = whole;
         cells.extend(extra);
         Some(route)
     } else {

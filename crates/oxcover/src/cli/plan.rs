@@ -35,8 +35,9 @@ pub(crate) struct PlanArgs {
     /// Plan room by room (the rooms of `oxcover segment`, cut at doors; each
     /// finished before the next, in the order of least transit time); off
     /// plans the whole map at once with the papers' nearest-first boundary pass
-    /// (on, each room's pass is the straightened tour or the nearest-first
-    /// pass, whichever is faster; a map with one room is planned at once).
+    /// (on, each room's pass is a straightened tour ending towards the next
+    /// room or the nearest-first pass, both tightened for time, whichever is
+    /// faster; a map with one room is planned at once).
     #[arg(long, value_enum, value_name = "on|off", default_value_t = OnOff::On)]
     pub(crate) rooms: OnOff,
     #[command(flatten)]
