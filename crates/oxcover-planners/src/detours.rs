@@ -222,10 +222,9 @@ fn sample_reaches(a: GridPoint, b: GridPoint, q: GridPoint, r: f64) -> bool {
     (at(s.floor()) - q).norm() <= r || (at(s.ceil().min(n)) - q).norm() <= r
 }
 
-/// Calls `f` once for every cell of a `w × h` grid whose centre lies
-/// within `r` of the segment `a → b` (the segment in pieces of at most
-/// `2r`; a cell belongs to the piece its projection on the segment falls
-/// in).
+/// Calls `f` once for every cell of a `w × h` grid whose centre one of the
+/// contract's samples of the segment `a → b` reaches within `r`
+/// ([`sample_reaches`]).
 fn for_stroke_cells(
     a: GridPoint,
     b: GridPoint,
@@ -359,26 +358,17 @@ pub(crate) fn reach_counts(points: &[GridPoint], d: &Detours<'_>) -> Grid<u16> {
     count
 }
 
-/// Adds one to the count of every cell a sample of `a → b` reaches (the
-/// contract's samples: [`sample_reaches`]).
+/// Adds one to the count of every cell a sample of `a → b` reaches.
 fn count_stroke(count: &mut Grid<u16>, a: GridPoint, b: GridPoint, r: f64) {
     let (w, h) = (count.width(), count.height());
-    for_stroke_cells(a, b, r, w, h, |c| {
-        if sample_reaches(a, b, cell_center(c), r) {
-            count[c] = count[c].saturating_add(1);
-        }
-    });
+    for_stroke_cells(a, b, r, w, h, |c| count[c] = count[c].saturating_add(1));
 }
 
 /// Takes one from the count of every cell a sample of `a → b` reaches (what
 /// [`count_stroke`] added).
 fn uncount_stroke(count: &mut Grid<u16>, a: GridPoint, b: GridPoint, r: f64) {
     let (w, h) = (count.width(), count.height());
-    for_stroke_cells(a, b, r, w, h, |c| {
-        if sample_reaches(a, b, cell_center(c), r) {
-            count[c] = count[c].saturating_sub(1);
-        }
-    });
+    for_stroke_cells(a, b, r, w, h, |c| count[c] = count[c].saturating_sub(1));
 }
 
 /// `points` with detours inserted until every coverable cell is within

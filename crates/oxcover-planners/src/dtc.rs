@@ -13,7 +13,7 @@
 //!   Room by room the pipeline passes the room's cell nearest the next room
 //!   ([`crate::PlannerInput::exit`]); its coverage cell is then the goal, so
 //!   the room's path ends where the robot leaves it (rooms on, measured over
-//!   the shared maps: mean estimated time 16705 → 16639 s on the ipa floor
+//!   the shared maps when introduced: mean estimated time 16705 → 16639 s on the ipa floor
 //!   plans and 10311 → 10281 s on the ROS maps, `docs/efficiency.md`).
 //! - **Ties** between equally labelled neighbours: keep the current heading,
 //!   then the fixed order N, E, S, W.

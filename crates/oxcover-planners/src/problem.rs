@@ -25,6 +25,7 @@
 //! the contract's default start may be a speck of SLAM noise.
 
 use oxcover_distance::{Wavefront, cidt};
+use oxcover_grid::traverse::GridPoint;
 use oxcover_grid::{
     Cell, CoarseGrid, Coverability, DiscRobot, Grid, MapFrame, OccupancyGrid, Point,
     TOLERANCE_CELLS, admissible, components4, coverable_cells, reachable,
@@ -35,7 +36,6 @@ use crate::detours::{Detours, reach_counts, tighten_from};
 use crate::error::{Error, Result};
 use crate::metre_path::PathBuilder;
 use crate::time::TimeModel;
-use oxcover_grid::traverse::GridPoint;
 
 /// Where the robot starts.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

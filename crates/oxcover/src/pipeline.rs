@@ -119,8 +119,10 @@ pub struct PlanRequest {
     pub seed: u64,
     /// Append the boundary pass. Default on.
     pub boundary_pass: bool,
-    /// Plan room by room where the map has more than one room. Default on;
-    /// the papers' grid experiments turn it off.
+    /// Plan room by room where the map has more than one room, and make
+    /// each room's boundary pass a tour or nearest-first pass tightened for
+    /// time (on a map of one room too). Default on; the papers' grid
+    /// experiments turn it off (map-wide plan, nearest-first pass as is).
     pub rooms: bool,
     /// Speeds for estimated time, the planners' objective and the metrics'
     /// `est_time_s` (default: the contract's 0.3 m/s and 0.52 rad/s).
@@ -506,10 +508,10 @@ fn plan_region(
             };
             (pts, extra)
         };
-        // Room by room, the pass is a straightened tour, or the nearest-first
-        // pass where that is faster (estimated time from the plan's end); the
-        // map-wide pass keeps its nearest-first order (the papers'
-        // experiments).
+        // Rooms on, the pass is a straightened tour ending towards the next
+        // room or the nearest-first pass, whichever is faster once both are
+        // tightened; rooms off keeps the nearest-first pass as it is (the
+        // papers' experiments).
         let (route, whole, extra) = if request.rooms {
             let tour = problem.boundary_tour_to(&raw, end, exit)?;
             let pass = problem.boundary_pass(&raw, end)?;
