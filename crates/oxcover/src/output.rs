@@ -10,9 +10,10 @@
 //! The temporary files in flight are registered: on SIGINT or SIGTERM the
 //! command line calls [`abandon`], which removes them (waiting for a set
 //! being renamed into place to finish) so an interrupted run leaves nothing
-//! behind. Only SIGKILL, which no program can catch, can leave a hidden
-//! `.NAME.oxcover-PID-K.tmp` beside a target; the target itself is still
-//! whole or absent.
+//! behind; so is the probe [`check_outputs`] creates to test a folder.
+//! Only SIGKILL, which no program can catch, can leave a hidden
+//! `.NAME.oxcover-PID-K.tmp` (or `.oxcover-probe-PID`) beside a target;
+//! the target itself is still whole or absent.
 
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
@@ -34,6 +35,20 @@ pub fn abandon() {
     }
     // Keep the lock: no write may start after this.
     std::mem::forget(staged);
+}
+
+/// Creates `tmp` (which must not exist) and registers it, both under the
+/// lock: a signal handler's [`abandon`] either runs first (and this waits
+/// for the process to exit) or finds the file and removes it. Registering
+/// first and creating after the lock is let go would let a handler run in
+/// between and leave the file behind.
+fn create_registered(tmp: &Path) -> std::io::Result<std::fs::File> {
+    let mut registry = in_flight();
+    registry.push(tmp.to_path_buf());
+    std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(tmp)
 }
 
 fn in_flight() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
@@ -89,15 +104,10 @@ pub fn write_files(files: Vec<(PathBuf, Vec<u8>)>) -> Result<Vec<PathBuf>> {
             target
         };
         let tmp = temporary(&target, k);
-        in_flight().push(tmp.clone());
-        let written = std::fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&tmp)
-            .and_then(|mut f| {
-                f.write_all(&bytes)?;
-                f.sync_all()
-            });
+        let written = create_registered(&tmp).and_then(|mut f| {
+            f.write_all(&bytes)?;
+            f.sync_all()
+        });
         if let Err(e) = written {
             let _ = std::fs::remove_file(&tmp);
             unregister(&[&tmp]);
@@ -245,8 +255,13 @@ fn one_of(endings: &[&str]) -> String {
 
 /// Whether a file can be created in `folder` (tried with a probe file that
 /// is removed at once: permission bits do not tell about read-only mounts).
+///
+/// The probe lives while the registry of temporary files is locked, so a
+/// signal handler's [`abandon`] runs before it is created or after it is
+/// removed: an interrupted run leaves no probe behind.
 fn writable(folder: &Path) -> bool {
     let probe = folder.join(format!(".oxcover-probe-{}", std::process::id()));
+    let _registry = in_flight();
     match std::fs::OpenOptions::new()
         .write(true)
         .create_new(true)
