@@ -274,3 +274,29 @@ fn four_rooms_are_planned_one_by_one() {
         check(&map, planner).unwrap();
     }
 }
+
+/// Room by room, the pipeline runs in parallel in several places (the
+/// segmentation beside the problem's build, the room order's wavefronts,
+/// each room's two tightened boundary routes, `lanes`' angles): the path is
+/// the same on one thread as on four, for every planner kind.
+#[test]
+fn room_by_room_plans_do_not_depend_on_the_thread_count() {
+    let map = room_map(3, 2, 7);
+    let robot = DiscRobot::new(0.15, 0.15).unwrap();
+    for planner in ["lanes", "boustrophedon", "dtc", "full-dtc", "smooth"] {
+        let req = PlanRequest::new(planner, RES)
+            .unwrap()
+            .robot(robot)
+            .start(Start::LargestRegion);
+        let on = |threads: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("pool")
+                .install(|| plan(&map, &req).expect("plan"))
+        };
+        let (one, four) = (on(1), on(4));
+        assert!(one.room_units.is_some_and(|n| n > 1), "{planner}: one room");
+        assert_eq!(one.points, four.points, "{planner}");
+    }
+}
