@@ -26,7 +26,10 @@
 //!    beat the wall directions by 10 %. That model cannot see what detours
 //!    and tightening will make of an angle, so the two best (by the model
 //!    plus their ordered transits) are both built to the end, in parallel,
-//!    and the path with the least estimated time is kept.
+//!    and the path with the least estimated time is kept. A small plan
+//!    (fewer plannable cells than [`BUILD_BUDGET`] over the number of
+//!    angles; room by room, the whole map's count decides) builds as many
+//!    angles as the budget allows, every angle on the smallest maps.
 //!
 //! **Order.** Loops (entered and left at one of eight points) and chains
 //! (entered at one of four corners, left at the opposite end) are ordered
@@ -137,6 +140,10 @@ const NEAR_TIE: f64 = 1.15;
 /// built to the end (detours, tightening) and compared by the final
 /// path's estimated time.
 const ANGLES_BUILT: usize = 2;
+/// Angle builds (each a whole plan: detours, tightening) a plan may spend,
+/// in plannable cells: a plan of `n` cells builds `BUILD_BUDGET / n` of its
+/// angles, at least [`ANGLES_BUILT`]; small maps try every angle to the end.
+const BUILD_BUDGET: usize = 300_000;
 /// Entry points tried per loop.
 const LOOP_ENTRIES: usize = 8;
 
@@ -224,11 +231,20 @@ fn plan_lanes(
     let exit = input.exit.filter(|&c| plannable.is_set(c)).map(cell_center);
     let mut region = Region::new(plannable);
     let cheapest = scored.first().map_or(0.0, |b| b.0);
+    // A small plan can afford to build more angles than the model's best
+    // few: then every one of them is ordered and built, whatever the model
+    // thinks of it.
+    let affordable = (BUILD_BUDGET / input.plan_cells.max(1)).min(scored.len());
+    let (ordered_count, built_count, tie) = if affordable > ANGLES_BUILT {
+        (affordable, affordable, f64::INFINITY)
+    } else {
+        (ANGLES_ORDERED, ANGLES_BUILT, NEAR_TIE)
+    };
     let near_ties = scored
         .into_iter()
-        .take(ANGLES_ORDERED)
+        .take(ordered_count)
         .enumerate()
-        .filter(|(i, (cost, _))| *i == 0 || *cost <= NEAR_TIE * cheapest)
+        .filter(|(i, (cost, _))| *i == 0 || *cost <= tie * cheapest)
         .map(|(_, c)| c);
     let mut ordered: Vec<(f64, Vec<Chain>, Tour)> = Vec::new();
     for (cost, chains) in near_ties {
@@ -274,7 +290,7 @@ fn plan_lanes(
         Ok((polyline_time(path.points(), &cell_time) + to_exit, path))
     };
     let built: Vec<Result<(f64, PathBuilder<'_>)>> =
-        ordered.par_iter().take(ANGLES_BUILT).map(build).collect();
+        ordered.par_iter().take(built_count).map(build).collect();
     let mut best: Option<(f64, PathBuilder<'_>)> = None;
     for b in built {
         let b = b?;
@@ -1274,6 +1290,40 @@ mod tests {
         let one = on(1);
         assert!(one.len() > 8, "{one:?}");
         assert_eq!(one, on(4));
+    }
+
+    /// A plan small enough to build every angle is never slower than the
+    /// same region planned as part of a large map (the model's best two
+    /// built): the angles built then include those two. On two of these
+    /// rooms with a pillar it is faster.
+    #[test]
+    fn a_small_plan_builds_more_angles_and_is_never_slower() {
+        let mut faster = 0;
+        for (size, pillar) in [(24, 9..13), (30, 5..9), (20, 12..17)] {
+            let mut rows = vec![".".repeat(size); size];
+            for r in rows.iter_mut().take(pillar.end + 2).skip(pillar.start) {
+                r.replace_range(pillar.clone(), &"#".repeat(pillar.len()));
+            }
+            let (map, _) = parse_ascii(&rows.join("\n")).expect("valid map");
+            let problem =
+                CoverageProblem::new(&map, DiscRobot::new(1.5, 1.5).expect("robot"), Start::First)
+                    .expect("problem");
+            let small = problem.input(0);
+            assert!(
+                BUILD_BUDGET / small.plan_cells >= 14,
+                "{}",
+                small.plan_cells
+            );
+            let mut large = problem.input(0);
+            large.plan_cells = BUILD_BUDGET;
+            let time = |input: &PlannerInput<'_>| {
+                input.time.polyline(&plan_lanes(input, None).expect("plan"))
+            };
+            let (all, two) = (time(&small), time(&large));
+            assert!(all <= two + 1e-9, "{size}: {all} > {two}");
+            faster += usize::from(all < two - 1e-6);
+        }
+        assert_eq!(faster, 2);
     }
 
     #[test]

@@ -291,6 +291,7 @@ impl CoverageProblem {
             tool_cells: self.tool_cells,
             time: self.time,
             exit: None,
+            plan_cells: self.cells.reachable.count_true(),
         }
     }
 
@@ -562,6 +563,12 @@ pub struct PlannerInput<'a> {
     /// room nearest the next room): a planner may end its path near it.
     /// `None` from [`CoverageProblem::input`]; the pipeline sets it.
     pub exit: Option<Cell>,
+    /// Plannable cells of the whole plan this input is part of: its own
+    /// when planned alone, the map's when the pipeline plans room by room.
+    /// A planner that searches more widely on small plans sizes its effort
+    /// by this, so that a map's planning time does not grow with its number
+    /// of rooms.
+    pub plan_cells: usize,
 }
 
 impl PlannerInput<'_> {

@@ -453,10 +453,14 @@ fn plan_region(
     request: &PlanRequest,
     prefix: Vec<Point>,
     exit: Option<Cell>,
+    plan_cells: Option<usize>,
 ) -> Result<RegionPlan> {
     let frame = problem.frame();
     let mut input = problem.input(request.seed);
     input.exit = exit;
+    if let Some(n) = plan_cells {
+        input.plan_cells = n;
+    }
     let output = request.planner.plan(&input)?;
     let (planned, tail) = match &output {
         PlanOutput::Metres(points) => {
@@ -580,7 +584,7 @@ fn plan_whole(
     request: &PlanRequest,
     t0: Instant,
 ) -> Result<PlanOutcome> {
-    let region = plan_region(problem, request, start_prefix(problem), None)?;
+    let region = plan_region(problem, request, start_prefix(problem), None, None)?;
     let plan_ms = t0.elapsed().as_secs_f64() * 1e3;
     let boundary_length_m = polyline_length(&region.points) - polyline_length(&region.raw);
     finish(
@@ -606,6 +610,7 @@ fn plan_rooms(
     let order = room_order(problem, units);
     let exits = unit_exits(problem, units, &order);
     let claims = unit_claims(problem, units);
+    let plan_cells = problem.plannable().count_true();
     let mut points: Vec<Point> = Vec::new();
     let mut cells: Vec<Cell> = Vec::new();
     let mut raws = Vec::new();
@@ -629,7 +634,7 @@ fn plan_rooms(
         let claimed = claims.map(|&l| l == u || l == ANY_UNIT);
         let sub = problem.restricted_claiming(&units.mask(u), entry, Some(&claimed))?;
         let exit = exits[i].and_then(|c| sub.from_map_cell(c));
-        let mut region = plan_region(&sub, request, prefix, exit)?;
+        let mut region = plan_region(&sub, request, prefix, exit, Some(plan_cells))?;
         for c in &mut region.cells {
             *c = sub.to_map_cell(*c);
         }
