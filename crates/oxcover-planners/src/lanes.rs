@@ -146,7 +146,7 @@ const ANGLES_BUILT: usize = 2;
 /// Angle builds (each a whole plan: detours, tightening) a plan may spend,
 /// in plannable cells: a plan of `n` cells builds `BUILD_BUDGET / n` of its
 /// angles, at least [`ANGLES_BUILT`]; small maps try every angle to the end.
-const BUILD_BUDGET: usize = 300_000;
+const BUILD_BUDGET: usize = 200_000;
 /// Entry points tried per loop.
 const LOOP_ENTRIES: usize = 8;
 
