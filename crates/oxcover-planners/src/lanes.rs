@@ -29,10 +29,10 @@
 //!    beat the wall directions by 10 %. That model cannot see what detours
 //!    and tightening will make of an angle, so the two best (by the model
 //!    plus their ordered transits) are both built to the end, in parallel,
-//!    and the path with the least estimated time is kept. A small plan
-//!    (fewer plannable cells than [`BUILD_BUDGET`] over the number of
-//!    angles; room by room, the whole map's count decides) builds as many
-//!    angles as the budget allows, every angle on the smallest maps.
+//!    and the path with the least estimated time is kept. A plan of fewer
+//!    than 100,000 plannable cells builds more: 200,000 cells' worth of
+//!    angles, every angle below about 14,000 cells (room by room, the whole
+//!    map's count decides, so more rooms cost no more builds).
 //!
 //! **Order.** Loops (entered and left at one of eight points) and chains
 //! (entered at one of four corners, left at the opposite end) are ordered
