@@ -1387,6 +1387,40 @@ mod tests {
         }
     }
 
+    /// In a 40 × 24 room with a tool of 3 cells, the lane mask spans rows 4
+    /// to 19 (centres 4.5 to 19.5): spread over all of it, four lines lie
+    /// on its edges, in the loops' strip; moved in by the inset, three lines
+    /// cover the same mask, the first and last an inset off its edges.
+    #[test]
+    fn the_outermost_lines_keep_off_the_loops_strip() {
+        let plannable = Grid::new(40, 24, true);
+        let lane_mask = Grid::from_fn(40, 24, |c: Cell| (4..20).contains(&c.row));
+        let spacing = 2.0 * (9.0f64 - 1.0 / 64.0).sqrt() * 0.999;
+        let rows = |inset: f64| -> Vec<f64> {
+            let (chains, _) = chains_at(&plannable, &lane_mask, 0.0, spacing, inset);
+            let mut v: Vec<f64> = chains
+                .iter()
+                .flat_map(|c| &c.lanes)
+                .map(|l| ((l.a.y - EDGE_NUDGE) * 1e6).round() / 1e6)
+                .collect();
+            v.sort_by(f64::total_cmp);
+            v
+        };
+        let inset = 3.0 - OUTSET - LINE_MARGIN;
+        assert_eq!(rows(0.0), vec![4.5, 9.5, 14.5, 19.5]);
+        assert_eq!(rows(inset), vec![7.0, 12.0, 17.0]);
+        // Where the mask is narrower than two insets, one line down its middle.
+        let thin = Grid::from_fn(40, 24, |c: Cell| (10..13).contains(&c.row));
+        let (chains, _) = chains_at(&plannable, &thin, 0.0, spacing, inset);
+        let ys: Vec<f64> = chains
+            .iter()
+            .flat_map(|c| &c.lanes)
+            .map(|l| l.a.y)
+            .collect();
+        assert_eq!(ys.len(), 1);
+        assert!((ys[0] - EDGE_NUDGE - 11.5).abs() < 1e-9, "{ys:?}");
+    }
+
     /// An open 24 × 9 room, tool 1.5 cells: one edge loop and lanes cover
     /// all but the corners' last cells (the boundary pass's share), nothing
     /// is crossed.
