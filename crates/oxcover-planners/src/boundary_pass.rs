@@ -36,7 +36,7 @@ use oxcover_grid::footprint::{mark_covered, mark_disc};
 use oxcover_grid::{Cell, Coverability, Grid, MapFrame, Point, TOLERANCE_CELLS};
 
 use crate::error::{Error, Result};
-use crate::metre_path::PathBuilder;
+use crate::metre_path::{PathBuilder, grid_to_metres};
 
 /// What the pass did.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -298,10 +298,7 @@ fn toured(
             .ok_or_else(|| Error::Internal("boundary pass retrace failed".into()))?;
         let from = path.points().len() - 1;
         path.follow(&seg[1..], f64::INFINITY);
-        let leg: Vec<Point> = path.points()[from..]
-            .iter()
-            .map(|p| frame.position(p.y - 0.5, p.x - 0.5))
-            .collect();
+        let leg = grid_to_metres(frame, &path.points()[from..]);
         mark_covered(frame, &leg, tool, &mut covered);
         route.extend_from_slice(&seg[1..]);
         here = a;

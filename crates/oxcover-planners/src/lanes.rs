@@ -1441,13 +1441,7 @@ mod tests {
         let end = f.cell_at(pts.last().unwrap()).unwrap();
         let rest = problem.boundary_tour(&pts, end).unwrap();
         assert!(rest.anchors <= 4, "{}", rest.anchors);
-        let grid_pts: Vec<GridPoint> = pts
-            .iter()
-            .map(|p| {
-                let (r, c) = f.fractional_cell(p);
-                GridPoint::new(c + 0.5, r + 0.5)
-            })
-            .collect();
+        let grid_pts = crate::metre_path::metres_to_grid(f, &pts);
         for w in grid_pts.windows(2) {
             assert!(segment_clear(input.plannable, w[0], w[1]), "{w:?}");
         }

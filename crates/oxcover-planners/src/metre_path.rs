@@ -245,11 +245,28 @@ impl<'a> PathBuilder<'a> {
 
     /// The path in metres.
     pub(crate) fn into_metres(self, frame: &MapFrame) -> Vec<Point> {
-        self.points
-            .into_iter()
-            .map(|p| frame.position(p.y - 0.5, p.x - 0.5))
-            .collect()
+        grid_to_metres(frame, &self.points)
     }
+}
+
+/// Grid points (x = column, y = row, cell centres at `.5`) as metre
+/// positions in `frame`.
+pub(crate) fn grid_to_metres(frame: &MapFrame, points: &[GridPoint]) -> Vec<Point> {
+    points
+        .iter()
+        .map(|p| frame.position(p.y - 0.5, p.x - 0.5))
+        .collect()
+}
+
+/// Metre positions in `frame` as grid points ([`grid_to_metres`] undone).
+pub(crate) fn metres_to_grid(frame: &MapFrame, points: &[Point]) -> Vec<GridPoint> {
+    points
+        .iter()
+        .map(|p| {
+            let (row, col) = frame.fractional_cell(p);
+            GridPoint::new(col + 0.5, row + 0.5)
+        })
+        .collect()
 }
 
 /// Clearance checks against a plannable mask, with the cells whose 3 × 3

@@ -25,7 +25,6 @@
 //! the contract's default start may be a speck of SLAM noise.
 
 use oxcover_distance::{Wavefront, cidt};
-use oxcover_grid::traverse::GridPoint;
 use oxcover_grid::{
     Cell, CoarseGrid, Coverability, DiscRobot, Grid, MapFrame, OccupancyGrid, Point,
     TOLERANCE_CELLS, admissible, components4, coverable_cells, reachable,
@@ -34,7 +33,7 @@ use oxcover_grid::{
 use crate::boundary_pass::{BoundaryRoute, boundary_pass, boundary_tour, boundary_tour_to};
 use crate::detours::{Detours, reach_counts, tighten_from};
 use crate::error::{Error, Result};
-use crate::metre_path::PathBuilder;
+use crate::metre_path::{PathBuilder, grid_to_metres, metres_to_grid};
 use crate::time::TimeModel;
 
 /// Where the robot starts.
@@ -454,13 +453,7 @@ impl CoverageProblem {
             return points.to_vec();
         }
         let frame = &self.frame;
-        let grid: Vec<GridPoint> = points
-            .iter()
-            .map(|p| {
-                let (row, col) = frame.fractional_cell(p);
-                GridPoint::new(col + 0.5, row + 0.5)
-            })
-            .collect();
+        let grid = metres_to_grid(frame, points);
         let res = frame.resolution();
         let tool = self.tool_cells().max(0.5);
         let d = Detours {
@@ -478,10 +471,7 @@ impl CoverageProblem {
         };
         let count = reach_counts(&grid, &d);
         let (tight, _) = tighten_from(&grid, &d, count, first);
-        tight
-            .into_iter()
-            .map(|p| frame.position(p.y - 0.5, p.x - 0.5))
-            .collect()
+        grid_to_metres(frame, &tight)
     }
 
     /// [`Self::boundary_tour`] ending towards the plannable cell `exit`
@@ -689,13 +679,11 @@ mod tests {
                 );
             }
             // Never off the plannable cells, never slower.
-            for w in tight.windows(2) {
-                let a = frame.fractional_cell(&w[0]);
-                let b = frame.fractional_cell(&w[1]);
+            for w in metres_to_grid(frame, &tight).windows(2) {
                 proptest::prop_assert!(oxcover_grid::traverse::segment_clear(
                     p.plannable(),
-                    GridPoint::new(a.1 + 0.5, a.0 + 0.5),
-                    GridPoint::new(b.1 + 0.5, b.0 + 0.5),
+                    w[0],
+                    w[1],
                 ));
             }
             proptest::prop_assert!(p.time().polyline(&tight) <= p.time().polyline(&path) + 1e-9);
