@@ -51,6 +51,13 @@ pub(crate) struct Detours<'a> {
     /// How near a cell centre one of the path's contract samples must be
     /// (cells; the tool radius).
     pub reach: f64,
+    /// How much farther than `reach` a sample may still reach a cell as
+    /// the metrics measure it (cells; 0 where the caller covers such cells
+    /// itself). [`tighten`] never leaves out a cell the pieces it replaces
+    /// reach within `reach + fragile`, unless another piece reaches it
+    /// within `reach`: the two radii either side of the metrics' own keep
+    /// rounding from deciding a cell's fate.
+    pub fragile: f64,
     /// Farthest a detour's vertex may be from the segment it bends (cells).
     pub search: f64,
     /// Speeds in cells per second and radians per second.
@@ -90,10 +97,16 @@ impl Linked {
     }
 
     fn points(&self) -> Vec<GridPoint> {
+        self.ids().into_iter().map(|i| self.pts[i]).collect()
+    }
+
+    /// The vertices in path order, by their index (a vertex of the
+    /// original path keeps its index there, moved or not).
+    fn ids(&self) -> Vec<usize> {
         let mut out = Vec::with_capacity(self.pts.len());
         let mut i = if self.pts.is_empty() { END } else { 0 };
         while i != END {
-            out.push(self.pts[i]);
+            out.push(i);
             i = self.next[i];
         }
         out
@@ -496,19 +509,40 @@ pub(crate) fn tighten(
     d: &Detours<'_>,
     count: Grid<u16>,
 ) -> (Vec<GridPoint>, usize) {
-    tighten_from(points, d, count, 0)
+    let (points, _, changes) = tighten_from(points, d, count, 0, None);
+    (points, changes)
+}
+
+/// Where the vertices of a path may be moved: vertex `i` with a label
+/// `of_vertex[i]` other than 0 only to a point of a cell with that label
+/// in `labels` (the room it works in); removing it is always allowed.
+pub(crate) struct Zone<'a> {
+    pub labels: &'a Grid<u32>,
+    pub of_vertex: &'a [u32],
+}
+
+impl Zone<'_> {
+    fn allows(&self, v: usize, q: GridPoint) -> bool {
+        match self.of_vertex.get(v) {
+            None | Some(0) => true,
+            Some(&z) => cell_of(self.labels, q).is_some_and(|c| self.labels[c] == z),
+        }
+    }
 }
 
 /// [`tighten`] moving only the vertices from index `first` on (those
-/// before stay where they are, and still count for coverage).
+/// before stay where they are, and still count for coverage), each within
+/// its `zone` if one is given. Also returns the index in `points` of each
+/// vertex kept, in order.
 pub(crate) fn tighten_from(
     points: &[GridPoint],
     d: &Detours<'_>,
     mut count: Grid<u16>,
     first: usize,
-) -> (Vec<GridPoint>, usize) {
+    zone: Option<&Zone<'_>>,
+) -> (Vec<GridPoint>, Vec<usize>, usize) {
     if points.len() < 3 {
-        return (points.to_vec(), 0);
+        return (points.to_vec(), (0..points.len()).collect(), 0);
     }
     let mut path = Linked::new(points);
     let mut changes = 0;
@@ -523,7 +557,7 @@ pub(crate) fn tighten_from(
             // The vertex removed, or moved towards the line of its
             // neighbours (replacing two at once was measured: no gain).
             let (u, x) = (path.prev[v], path.next[v]);
-            if dirty[v] && try_replace(&mut path, &mut count, d, v) {
+            if dirty[v] && try_replace(&mut path, &mut count, d, v, zone) {
                 changes += 1;
                 changed = true;
                 for k in [u, v, x] {
@@ -537,7 +571,7 @@ pub(crate) fn tighten_from(
         }
         dirty = next_dirty;
     }
-    (path.points(), changes)
+    (path.points(), path.ids(), changes)
 }
 
 /// Replaces node `v` by the fastest of: nothing, a point on the way from
@@ -545,7 +579,13 @@ pub(crate) fn tighten_from(
 /// one of its pieces ([`SLIDES`]), that is clear, saves time and uncovers
 /// nothing (the fastest, not the first: measured on the ipa plans, 0.406
 /// → 0.415 time efficiency, rooms off). Returns whether it did.
-fn try_replace(path: &mut Linked, count: &mut Grid<u16>, d: &Detours<'_>, v: usize) -> bool {
+fn try_replace(
+    path: &mut Linked,
+    count: &mut Grid<u16>,
+    d: &Detours<'_>,
+    v: usize,
+    zone: Option<&Zone<'_>>,
+) -> bool {
     let (u, x) = (path.prev[v], path.next[v]);
     if u == END || x == END {
         return false;
@@ -605,7 +645,8 @@ fn try_replace(path: &mut Linked, count: &mut Grid<u16>, d: &Detours<'_>, v: usi
         let clear = match m {
             None => segment_clear(d.plannable, pu, px),
             Some(q) => {
-                cell_of(d.plannable, q).is_some_and(|c| d.plannable[c])
+                zone.is_none_or(|z| z.allows(v, q))
+                    && cell_of(d.plannable, q).is_some_and(|c| d.plannable[c])
                     && segment_clear(d.plannable, pu, q)
                     && segment_clear(d.plannable, q, px)
             }
@@ -726,8 +767,10 @@ fn reached_only_by(
     let size = (count.width(), count.height());
     let at_risk = |c: Cell| d.coverable[c] && count[c] <= old.len() as u16 + 1;
     let mut out = Vec::new();
+    // Every cell the old pieces may reach (within `reach + fragile`) that
+    // no other piece surely reaches (within `reach`: `count` counts those).
     for (a, b) in pieces(u, old, x) {
-        stroke_until(a, b, d.reach, size, at_risk, |c| {
+        stroke_until(a, b, d.reach + d.fragile, size, at_risk, |c| {
             let q = cell_center(c);
             if pieces_reaching(u, old, x, q, d.reach) == count[c] {
                 out.push(q);
@@ -1053,6 +1096,7 @@ mod tests {
             plannable: &plannable,
             coverable: &coverable,
             reach: 1.0,
+            fragile: 0.0,
             search: 2.0,
             time: time(),
         };
@@ -1076,6 +1120,88 @@ mod tests {
         assert!(turned < std::f64::consts::FRAC_PI_2, "{turned}: {out:?}");
     }
 
+    /// A free 10 × 4 field where only the cell in row 2, column 5 (centre
+    /// (5.5, 2.5)) is to be covered.
+    fn one_cell_to_cover() -> (Grid<bool>, Grid<bool>) {
+        let plannable = mask(&["..........", "..........", "..........", ".........."]);
+        let mut coverable = Grid::new(10, 4, false);
+        coverable[Cell::new(2, 5)] = true;
+        (plannable, coverable)
+    }
+
+    /// A path along row 0 bent down to `y` in column 5.
+    fn bent_at(y: f64) -> Vec<GridPoint> {
+        vec![
+            GridPoint::new(0.5, 0.5),
+            GridPoint::new(5.5, y),
+            GridPoint::new(9.5, 0.5),
+        ]
+    }
+
+    /// A cell the path reaches only a little beyond `reach` (as the
+    /// metrics may count it, by rounding) is kept within reach of
+    /// `reach + fragile` by tightening; with no such margin the vertex that
+    /// reaches it goes.
+    #[test]
+    fn a_cell_just_beyond_reach_is_kept_when_fragile() {
+        let (plannable, coverable) = one_cell_to_cover();
+        // The middle vertex is 1.05 from the cell's centre (5.5, 2.5).
+        let path = bent_at(1.45);
+        let tightened = |fragile: f64| {
+            let d = Detours {
+                plannable: &plannable,
+                coverable: &coverable,
+                reach: 1.0,
+                fragile,
+                search: 2.0,
+                time: time(),
+            };
+            tighten(&path, &d, reach_counts(&path, &d)).0
+        };
+        let near = |pts: &[GridPoint]| {
+            pts.windows(2)
+                .map(|w| segment_distance(w[0], w[1], GridPoint::new(5.5, 2.5)))
+                .fold(f64::INFINITY, f64::min)
+        };
+        assert!(near(&tightened(0.0)) > 1.1);
+        let kept = tightened(0.1);
+        assert!(near(&kept) <= 1.1, "{kept:?}");
+    }
+
+    /// A zone keeps a vertex in its label's cells: a vertex that tightening
+    /// moves towards its neighbours' line, across a label border, when
+    /// free, stays on its own side when zoned.
+    #[test]
+    fn a_zone_keeps_a_vertex_in_its_room() {
+        let (plannable, coverable) = one_cell_to_cover();
+        // Rows 0 and 1 are room 1, rows 2 and 3 room 2.
+        let labels = Grid::from_fn(10, 4, |c| if c.row < 2 { 1u32 } else { 2 });
+        let path = bent_at(3.5);
+        let d = Detours {
+            plannable: &plannable,
+            coverable: &coverable,
+            reach: 1.0,
+            fragile: 0.0,
+            search: 2.0,
+            time: time(),
+        };
+        let room_of = |p: GridPoint| labels[cell_of(&labels, p).unwrap()];
+        let (moved, kept, _) = tighten_from(&path, &d, reach_counts(&path, &d), 0, None);
+        assert_eq!(kept, vec![0, 1, 2]);
+        assert_eq!(room_of(moved[1]), 1, "{moved:?}");
+        let of_vertex = [0, 2, 0];
+        let zone = Zone {
+            labels: &labels,
+            of_vertex: &of_vertex,
+        };
+        let (zoned, kept, _) = tighten_from(&path, &d, reach_counts(&path, &d), 0, Some(&zone));
+        assert_eq!(kept, vec![0, 1, 2]);
+        assert_eq!(room_of(zoned[1]), 2, "{zoned:?}");
+        // Still moved up as far as its room allows, and faster than before.
+        assert!(zoned[1].y < 2.5, "{zoned:?}");
+        assert!(polyline_time(&zoned, &d.time) < polyline_time(&path, &d.time));
+    }
+
     /// A cell no clear detour reaches is left as it is.
     #[test]
     fn an_unreachable_cell_is_left() {
@@ -1087,6 +1213,7 @@ mod tests {
             plannable: &plannable,
             coverable: &coverable,
             reach: 1.0,
+            fragile: 0.0,
             search: 3.0,
             time: time(),
         };
@@ -1114,6 +1241,7 @@ mod tests {
             plannable: &plannable,
             coverable: &coverable,
             reach: 1.0,
+            fragile: 0.0,
             search: 2.0,
             time: time(),
         };
@@ -1205,7 +1333,7 @@ mod tests {
             }
             prop_assume!(clear.len() >= 2 && cell_of(&plannable, clear[0]).is_some_and(|c| plannable[c]));
             let coverable = Grid::new(w, h, true);
-            let d = Detours { plannable: &plannable, coverable: &coverable, reach, search: 2.0 * reach, time: time() };
+            let d = Detours { plannable: &plannable, coverable: &coverable, reach, fragile: 0.0, search: 2.0 * reach, time: time() };
             let (detoured, count) = insert_detours(&clear, &d);
             let (out, _) = tighten(&detoured, &d, count);
             prop_assert_eq!(out.first(), clear.first());

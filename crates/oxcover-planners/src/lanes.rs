@@ -278,6 +278,9 @@ fn plan_lanes(
         coverable: input.coverable,
         // A hair inside the tool radius: the metrics measure in metres.
         reach: input.tool_cells - 1e-6,
+        // Cells only just within the metrics' reach are left to the passes
+        // that follow (`cover_leftovers`, the pipeline's boundary pass).
+        fragile: 0.0,
         search: 5.0 * tool,
         time: cell_time,
     };

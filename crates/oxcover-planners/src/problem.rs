@@ -31,7 +31,7 @@ use oxcover_grid::{
 };
 
 use crate::boundary_pass::{BoundaryRoute, boundary_pass, boundary_tour, boundary_tour_to};
-use crate::detours::{Detours, reach_counts, tighten_from};
+use crate::detours::{Detours, Zone, reach_counts, tighten_from};
 use crate::error::{Error, Result};
 use crate::metre_path::{PathBuilder, grid_to_metres, metres_to_grid};
 use crate::time::TimeModel;
@@ -449,20 +449,41 @@ impl CoverageProblem {
     /// boundary pass with it.
     #[must_use]
     pub fn tighten_from(&self, points: &[Point], first: usize) -> Vec<Point> {
+        self.tighten_within(points, first, None).0
+    }
+
+    /// [`Self::tighten_from`] with each waypoint `i` that has a label
+    /// `zones.1[i]` other than 0 moved only within the cells of that label
+    /// in `zones.0` (a grid of this problem's size; removed freely). Also
+    /// returns, for each waypoint kept, its index in `points`.
+    ///
+    /// The pipeline tightens a whole room-by-room plan with it, every
+    /// room's waypoints kept in their room.
+    #[must_use]
+    pub fn tighten_within(
+        &self,
+        points: &[Point],
+        first: usize,
+        zones: Option<(&Grid<u32>, &[u32])>,
+    ) -> (Vec<Point>, Vec<usize>) {
         if first + 1 >= points.len() {
-            return points.to_vec();
+            return (points.to_vec(), (0..points.len()).collect());
         }
         let frame = &self.frame;
         let grid = metres_to_grid(frame, points);
         let res = frame.resolution();
         let tool = self.tool_cells().max(0.5);
+        let tolerance = oxcover_grid::TOLERANCE_CELLS;
         let d = Detours {
             plannable: self.plannable(),
             coverable: &self.cells.coverable,
-            // The contract's radius with a tenth of the metrics' tolerance
-            // (1e-9 cells): a route through cell centres reaches cells
-            // exactly a tool radius away, up to the rounding of metres.
-            reach: self.tool_cells() + 0.1 * oxcover_grid::TOLERANCE_CELLS,
+            // The metrics count a cell within the tool radius and their
+            // tolerance (1e-9 cells) of a sample: a change must reach
+            // every cell a little inside that, and keeps every cell the
+            // old path reached a little outside it (rounding of metres and
+            // of points moved off cell edges lands on either side).
+            reach: self.tool_cells() + 0.9 * tolerance,
+            fragile: 0.2 * tolerance,
             search: 5.0 * tool,
             time: TimeModel {
                 linear_speed: self.time.linear_speed / res,
@@ -470,8 +491,9 @@ impl CoverageProblem {
             },
         };
         let count = reach_counts(&grid, &d);
-        let (tight, _) = tighten_from(&grid, &d, count, first);
-        grid_to_metres(frame, &tight)
+        let zone = zones.map(|(labels, of_vertex)| Zone { labels, of_vertex });
+        let (tight, kept, _) = tighten_from(&grid, &d, count, first, zone.as_ref());
+        (grid_to_metres(frame, &tight), kept)
     }
 
     /// [`Self::boundary_tour`] ending towards the plannable cell `exit`
@@ -639,6 +661,49 @@ mod tests {
         out
     }
 
+    /// A 7 × 12 map of 1 m cells with the cells `blocked` (the first cell
+    /// stays free), for a robot of radius 0 and tool radius `tool`.
+    fn scattered(blocked: &[(usize, usize)], tool: f64) -> CoverageProblem {
+        let mut rows = vec![vec!['.'; 12]; 7];
+        for &(r, c) in blocked {
+            if (r, c) != (0, 0) {
+                rows[r][c] = '#';
+            }
+        }
+        let text: Vec<String> = rows.iter().map(|r| r.iter().collect()).collect();
+        let (map, _) = parse_ascii(&text.join("\n")).unwrap();
+        CoverageProblem::new(&map, DiscRobot::new(0.0, tool).unwrap(), Start::First).unwrap()
+    }
+
+    /// Every coverable cell `path` covered (the metrics' own test) `tight`
+    /// still covers; `tight` never leaves the plannable cells and is never
+    /// slower.
+    fn still_covered_clear_and_no_slower(
+        p: &CoverageProblem,
+        path: &[Point],
+        tight: &[Point],
+    ) -> Result<(), proptest::test_runner::TestCaseError> {
+        let (frame, tool) = (p.frame(), p.robot().tool_radius);
+        let before = oxcover_grid::footprint::covered_cells(frame, path, tool);
+        let after = oxcover_grid::footprint::covered_cells(frame, tight, tool);
+        for c in before.true_cells() {
+            proptest::prop_assert!(
+                !p.cells().coverable[c] || after[c],
+                "cell {:?} uncovered",
+                c
+            );
+        }
+        for w in metres_to_grid(frame, tight).windows(2) {
+            proptest::prop_assert!(oxcover_grid::traverse::segment_clear(
+                p.plannable(),
+                w[0],
+                w[1],
+            ));
+        }
+        proptest::prop_assert!(p.time().polyline(tight) <= p.time().polyline(path) + 1e-9);
+        Ok(())
+    }
+
     proptest::proptest! {
         #[test]
         fn tightening_keeps_coverage_clearance_and_the_fixed_part(
@@ -652,41 +717,67 @@ mod tests {
             ],
             first in 0usize..20,
         ) {
-            let mut rows = vec![vec!['.'; 12]; 7];
-            for (r, c) in blocked {
-                if (r, c) != (0, 0) {
-                    rows[r][c] = '#';
-                }
-            }
-            let text: Vec<String> = rows.iter().map(|r| r.iter().collect()).collect();
-            let (map, _) = parse_ascii(&text.join("\n")).unwrap();
-            let p = CoverageProblem::new(&map, DiscRobot::new(0.0, tool).unwrap(), Start::First)
-                .unwrap();
+            let p = scattered(&blocked, tool);
             let path = walk(&p, &steps);
             let first = first.min(path.len());
             let tight = p.tighten_from(&path, first);
             // The fixed part stays, and the end too.
             proptest::prop_assert_eq!(&tight[..first], &path[..first]);
             proptest::prop_assert_eq!(tight.last(), path.last());
-            // Every cell the walk covered (the metrics' own test) still is.
+            still_covered_clear_and_no_slower(&p, &path, &tight)?;
+        }
+    }
+
+    proptest::proptest! {
+        /// Zoned, as the pipeline tightens a room-by-room plan: every
+        /// waypoint kept lies in its own zone's cells (if it has one), the
+        /// indices kept are the path's in order with both ends, coverage
+        /// and clearance hold and the path is never slower. Waypoints are
+        /// nudged off the cell centres by as little as new vertices are
+        /// nudged off cell edges.
+        #[test]
+        fn zoned_tightening_keeps_each_waypoint_in_its_zone(
+            blocked in proptest::collection::vec((0usize..7, 0usize..12), 0..8),
+            steps in proptest::collection::vec(0usize..4, 5..120),
+            tool in proptest::prop_oneof![
+                proptest::sample::select(vec![1.0, 1.5, 2.0]),
+                0.6f64..2.5
+            ],
+            zoned in proptest::collection::vec(proptest::bool::ANY, 120),
+            nudge in proptest::collection::vec(-1i8..=1, 240),
+        ) {
+            let p = scattered(&blocked, tool);
             let frame = p.frame();
-            let before = oxcover_grid::footprint::covered_cells(frame, &path, tool);
-            let after = oxcover_grid::footprint::covered_cells(frame, &tight, tool);
-            for c in before.true_cells() {
-                proptest::prop_assert!(
-                    !p.cells().coverable[c] || after[c],
-                    "cell {:?} uncovered", c
-                );
+            let res = frame.resolution();
+            let mut path = walk(&p, &steps);
+            let last = path.len() - 1;
+            for (i, q) in path.iter_mut().enumerate().skip(1).take(last.saturating_sub(1)) {
+                q.x += f64::from(nudge[2 * i]) * 1e-4 * res;
+                q.y += f64::from(nudge[2 * i + 1]) * 1e-4 * res;
             }
-            // Never off the plannable cells, never slower.
-            for w in metres_to_grid(frame, &tight).windows(2) {
-                proptest::prop_assert!(oxcover_grid::traverse::segment_clear(
-                    p.plannable(),
-                    w[0],
-                    w[1],
-                ));
+            // Zones: the left half of the map and the right.
+            let (w, h) = (p.plannable().width(), p.plannable().height());
+            let labels = Grid::from_fn(w, h, |c| if c.col < w / 2 { 1u32 } else { 2 });
+            let of_vertex: Vec<u32> = path
+                .iter()
+                .enumerate()
+                .map(|(i, q)| match frame.cell_at(q) {
+                    Some(c) if zoned[i] => labels[c],
+                    _ => 0,
+                })
+                .collect();
+            let (tight, kept) = p.tighten_within(&path, 0, Some((&labels, &of_vertex)));
+            proptest::prop_assert_eq!(tight.len(), kept.len());
+            proptest::prop_assert_eq!(kept.first(), Some(&0));
+            proptest::prop_assert_eq!(kept.last(), Some(&last));
+            proptest::prop_assert!(kept.windows(2).all(|k| k[0] < k[1]));
+            for (q, &i) in tight.iter().zip(&kept) {
+                if of_vertex[i] != 0 {
+                    let c = frame.cell_at(q).unwrap();
+                    proptest::prop_assert_eq!(labels[c], of_vertex[i], "waypoint {} left its zone", i);
+                }
             }
-            proptest::prop_assert!(p.time().polyline(&tight) <= p.time().polyline(&path) + 1e-9);
+            still_covered_clear_and_no_slower(&p, &path, &tight)?;
         }
     }
 

@@ -18,6 +18,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use oxcover_decomp::{RoomParams, Rooms, voronoi};
+use oxcover_grid::footprint::covered_cells;
 use oxcover_grid::io::{ReadOptions, read_map};
 use oxcover_grid::{Cell, Coverability, DiscRobot, OccupancyGrid, Point, components4};
 use oxcover_planners::{
@@ -292,7 +293,8 @@ pub struct PlanOutcome {
     pub coverage_without_boundary_pass: f64,
     /// What the boundary pass did, if it ran (summed over room units).
     pub boundary: Option<BoundaryRoute>,
-    /// Length of the path the boundary pass added (m).
+    /// Length of the path the boundary pass added (m; rooms on, before the
+    /// whole path's last tightening).
     pub boundary_length_m: f64,
     /// Room units planned one after another, when the plan went room by
     /// room (`None`: the whole map at once).
@@ -376,7 +378,11 @@ impl PlanOutcome {
 /// estimated time), and
 /// the units are visited in the order of [`room_order`], joined by
 /// straightened shortest transits ([`CoverageProblem::transit`]): every room
-/// is finished before the robot leaves it.
+/// is finished before the robot leaves it. With rooms on (one unit or
+/// more) the finished path is then tightened for time as a whole, each
+/// unit's waypoints kept in their unit ([`CoverageProblem::tighten_within`]);
+/// rooms off, the planner's path and the nearest-first pass stay as they are
+/// (the papers' experiments).
 ///
 /// # Errors
 /// A map too large for [`PlanRequest::memory_limit`] ([`Error::MemoryLimit`]),
@@ -585,12 +591,17 @@ fn plan_whole(
     t0: Instant,
 ) -> Result<PlanOutcome> {
     let region = plan_region(problem, request, start_prefix(problem), None, None)?;
-    let plan_ms = t0.elapsed().as_secs_f64() * 1e3;
     let boundary_length_m = polyline_length(&region.points) - polyline_length(&region.raw);
+    let (points, _) = if request.rooms {
+        tighten_plan(problem, None, region.points, Vec::new())
+    } else {
+        (region.points, Vec::new())
+    };
+    let plan_ms = t0.elapsed().as_secs_f64() * 1e3;
     finish(
         problem,
         request,
-        region.points,
+        points,
         region.cells,
         &[region.raw],
         region.boundary,
@@ -667,6 +678,7 @@ fn plan_rooms(
         }
         here = region.end;
     }
+    let (points, stretches) = tighten_plan(problem, Some(units), points, stretches);
     let plan_ms = t0.elapsed().as_secs_f64() * 1e3;
     finish(
         problem,
@@ -679,6 +691,52 @@ fn plan_rooms(
         stretches,
         plan_ms,
     )
+}
+
+/// A finished plan (rooms on) tightened for time as a whole, as `lanes`
+/// tightens its own path ([`CoverageProblem::tighten_within`]): the
+/// planner's waypoints, the transits and the boundary passes together, so
+/// that what a transit or the next room already covers is not driven
+/// twice and every junction between them is straightened. Each room's
+/// waypoints stay in their room (`units`); `stretches` are renumbered for
+/// the waypoints kept. Should rounding leave a cell the plan covered
+/// uncovered, the plan is returned as it was.
+fn tighten_plan(
+    problem: &CoverageProblem,
+    units: Option<&RoomUnits>,
+    points: Vec<Point>,
+    stretches: Vec<RoomStretch>,
+) -> (Vec<Point>, Vec<RoomStretch>) {
+    let mut of_vertex = vec![0u32; points.len()];
+    for s in &stretches {
+        for z in &mut of_vertex[s.points.clone()] {
+            *z = s.unit;
+        }
+    }
+    let zones = units.map(|u| (&u.labels, of_vertex.as_slice()));
+    let (tight, kept) = problem.tighten_within(&points, 0, zones);
+    if tight.len() == points.len() && tight == points {
+        return (points, stretches);
+    }
+    let frame = problem.frame();
+    let tool = problem.robot().tool_radius;
+    let (before, after) = rayon::join(
+        || covered_cells(frame, &points, tool),
+        || covered_cells(frame, &tight, tool),
+    );
+    let coverable = &problem.cells().coverable;
+    if coverable.true_cells().any(|c| before[c] && !after[c]) {
+        return (points, stretches);
+    }
+    let at = |i: usize| kept.partition_point(|&k| k < i);
+    let stretches = stretches
+        .into_iter()
+        .map(|s| RoomStretch {
+            unit: s.unit,
+            points: at(s.points.start)..at(s.points.end),
+        })
+        .collect();
+    (tight, stretches)
 }
 
 /// Scores a finished plan.
@@ -883,12 +941,20 @@ mod tests {
     #[test]
     fn metre_plans_pass_through_and_get_the_boundary_pass() {
         let (map, _) = oxcover_grid::io::parse_ascii("....\n....").unwrap();
-        let out = plan(&map, &PlanRequest::with_planner(Arc::new(Metric), 1.0)).unwrap();
+        let req = PlanRequest::with_planner(Arc::new(Metric), 1.0);
+        let out = plan(&map, &req.clone().rooms(false)).unwrap();
         assert_eq!(out.points[0], Point::new(0.5, 1.5));
         assert_eq!(out.points[1], Point::new(1.0, 1.5));
         let m = &out.evaluation.metrics;
         assert_eq!((m.coverage, m.collisions), (1.0, 0));
         assert!(out.coverage_without_boundary_pass < 1.0);
+        // Rooms on, the whole path is tightened afterwards: from the same
+        // start, as complete, never slower.
+        let on = plan(&map, &req).unwrap();
+        assert_eq!(on.points[0], out.points[0]);
+        let n = &on.evaluation.metrics;
+        assert_eq!((n.coverage, n.collisions), (1.0, 0));
+        assert!(n.est_time_s <= m.est_time_s + 1e-9);
     }
 
     #[test]
@@ -904,7 +970,10 @@ mod tests {
         assert_eq!(m.coverage, 1.0);
         assert!(out.coverage_without_boundary_pass < 1.0);
         assert_eq!(out.coarse_block, 6);
-        let raw = plan(&map, &req.boundary_pass(false)).unwrap();
+        // The planner's own coverage (rooms off: no tightening after it).
+        let off = req.rooms(false);
+        let out = plan(&map, &off).unwrap();
+        let raw = plan(&map, &off.boundary_pass(false)).unwrap();
         assert_eq!(
             raw.evaluation.metrics.coverage,
             out.coverage_without_boundary_pass

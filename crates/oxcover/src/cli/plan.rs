@@ -37,7 +37,8 @@ pub(crate) struct PlanArgs {
     /// plans the whole map at once with the papers' nearest-first boundary pass
     /// (on, each room's pass is a straightened tour ending towards the next
     /// room or the nearest-first pass, both tightened for time, whichever is
-    /// faster; a map with one room is planned at once).
+    /// faster, and then the whole path is tightened for time, each room's
+    /// waypoints kept in their room; a map with one room is planned at once).
     #[arg(long, value_enum, value_name = "on|off", default_value_t = OnOff::On)]
     pub(crate) rooms: OnOff,
     #[command(flatten)]
