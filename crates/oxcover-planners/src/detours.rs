@@ -64,6 +64,17 @@ pub(crate) struct Detours<'a> {
     pub time: TimeModel,
 }
 
+/// `(reach, fragile)` of [`Detours`] for a tool of `tool_cells` scored as
+/// the metrics score it: they count a cell within the tool radius and
+/// their tolerance (`TOLERANCE_CELLS`) of a sample, so a change must reach
+/// every cell a little inside that, and keeps every cell the old path
+/// reached a little outside it (rounding of metres, and points moved off
+/// cell edges, land on either side).
+pub(crate) fn metric_reach(tool_cells: f64) -> (f64, f64) {
+    let tolerance = oxcover_grid::TOLERANCE_CELLS;
+    (tool_cells + 0.9 * tolerance, 0.2 * tolerance)
+}
+
 /// A polyline as a linked list, so vertices can be inserted in place.
 struct Linked {
     pts: Vec<GridPoint>,

@@ -72,7 +72,9 @@ use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear, seg
 use oxcover_grid::{Cell, Grid, Vector};
 
 use crate::buckets::Buckets;
-use crate::detours::{Detours, heading_change, insert_detours, polyline_time, tighten};
+use crate::detours::{
+    Detours, heading_change, insert_detours, metric_reach, polyline_time, tighten,
+};
 use crate::error::{Error, Result};
 use crate::metre_path::PathBuilder;
 use crate::planner::{Planner, PlannerOptions};
@@ -273,14 +275,13 @@ fn plan_lanes(
     // What the straightened loops and the lanes' ends pass just out of
     // reach: covered by bending the path where that costs least (within
     // five tool radii of a segment).
+    // The metrics' own radius (either side of their tolerance).
+    let (reach, fragile) = metric_reach(input.tool_cells);
     let detours = Detours {
         plannable,
         coverable: input.coverable,
-        // A hair inside the tool radius: the metrics measure in metres.
-        reach: input.tool_cells - 1e-6,
-        // Cells only just within the metrics' reach are left to the passes
-        // that follow (`cover_leftovers`, the pipeline's boundary pass).
-        fragile: 0.0,
+        reach,
+        fragile,
         search: 5.0 * tool,
         time: cell_time,
     };

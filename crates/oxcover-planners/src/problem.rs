@@ -31,7 +31,7 @@ use oxcover_grid::{
 };
 
 use crate::boundary_pass::{BoundaryRoute, boundary_pass, boundary_tour, boundary_tour_to};
-use crate::detours::{Detours, Zone, reach_counts, tighten_from};
+use crate::detours::{Detours, Zone, metric_reach, reach_counts, tighten_from};
 use crate::error::{Error, Result};
 use crate::metre_path::{PathBuilder, grid_to_metres, metres_to_grid};
 use crate::time::TimeModel;
@@ -473,17 +473,12 @@ impl CoverageProblem {
         let grid = metres_to_grid(frame, points);
         let res = frame.resolution();
         let tool = self.tool_cells().max(0.5);
-        let tolerance = oxcover_grid::TOLERANCE_CELLS;
+        let (reach, fragile) = metric_reach(self.tool_cells());
         let d = Detours {
             plannable: self.plannable(),
             coverable: &self.cells.coverable,
-            // The metrics count a cell within the tool radius and their
-            // tolerance (1e-9 cells) of a sample: a change must reach
-            // every cell a little inside that, and keeps every cell the
-            // old path reached a little outside it (rounding of metres and
-            // of points moved off cell edges lands on either side).
-            reach: self.tool_cells() + 0.9 * tolerance,
-            fragile: 0.2 * tolerance,
+            reach,
+            fragile,
             search: 5.0 * tool,
             time: TimeModel {
                 linear_speed: self.time.linear_speed / res,
