@@ -25,7 +25,12 @@
 //! piece: of the changes at a vertex that are clear, save time and
 //! uncover nothing, the one saving the most. Over a densely traced edge
 //! loop this, not the first straightening, is what takes out the turns of
-//! a ragged wall.
+//! a ragged wall. What a path reaches is counted with two radii either
+//! side of the metrics' own ([`metric_reach`]): a change must reach a cell
+//! within the inner one, and every cell the replaced pieces reach within
+//! the outer one is kept, so that rounding never decides a cell's fate. A
+//! [`Zone`] keeps each vertex in its room (the pipeline tightens a whole
+//! room-by-room plan with one).
 //!
 //! Cost: the path's segments are kept in square buckets (each registered
 //! along its length); a missed cell looks at the segments of the buckets

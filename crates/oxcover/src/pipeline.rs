@@ -715,7 +715,7 @@ fn tighten_plan(
     }
     let zones = units.map(|u| (&u.labels, of_vertex.as_slice()));
     let (tight, kept) = problem.tighten_within(&points, 0, zones);
-    if tight.len() == points.len() && tight == points {
+    if tight == points {
         return (points, stretches);
     }
     let frame = problem.frame();
