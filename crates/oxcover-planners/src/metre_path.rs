@@ -311,7 +311,8 @@ impl<'a> Clearance<'a> {
         }
     }
 
-    /// Whether every point of `a → b` does (checked as [`segment_clearance`]).
+    /// Whether every point of `a → b` does (the tests' `segment_clearance`,
+    /// sampled the same way, must agree).
     pub(crate) fn segment(&self, a: GridPoint, b: GridPoint) -> bool {
         self.box_open(a, b) || segment_points(a, b, self.distance).all(|q| self.point(q))
     }

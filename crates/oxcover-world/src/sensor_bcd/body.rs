@@ -5,7 +5,7 @@
 //!
 //! - [`Body::lap`], *motion to boundary*: straight along the slice until the
 //!   disc, grown by the clearance margin, would touch a sensed point;
-//! - [`Body::follow_step`], *boundary following* at distance `r + δ`: from
+//! - [`Body::follow_target`], *boundary following* at distance `r + δ`: from
 //!   the direction of the nearest sensed point, turn (counter-clockwise with
 //!   the boundary on the right, clockwise with it on the left) to the first
 //!   direction whose step keeps `r + δ` from every point sensed by the last
