@@ -20,7 +20,9 @@ use std::time::Instant;
 use oxcover_decomp::{RoomParams, Rooms, voronoi};
 use oxcover_grid::footprint::covered_cells;
 use oxcover_grid::io::{ReadOptions, read_map};
-use oxcover_grid::{Cell, Coverability, DiscRobot, OccupancyGrid, Point, components4};
+use oxcover_grid::{
+    Cell, Coverability, DiscRobot, Grid, MapFrame, OccupancyGrid, Point, components4,
+};
 use oxcover_planners::{
     ANY_UNIT, BoundaryRoute, CoverageProblem, PlanOutput, Planner, PlannerOptions, RoomUnits,
     Start, TimeModel, largest_region_cell, registry, room_order, unit_claims, unit_exits,
@@ -718,14 +720,14 @@ fn tighten_plan(
     if tight == points {
         return (points, stretches);
     }
-    let frame = problem.frame();
     let tool = problem.robot().tool_radius;
-    let (before, after) = rayon::join(
-        || covered_cells(frame, &points, tool),
-        || covered_cells(frame, &tight, tool),
-    );
-    let coverable = &problem.cells().coverable;
-    if coverable.true_cells().any(|c| before[c] && !after[c]) {
+    if loses_coverage(
+        problem.frame(),
+        &problem.cells().coverable,
+        tool,
+        &points,
+        &tight,
+    ) {
         return (points, stretches);
     }
     let at = |i: usize| kept.partition_point(|&k| k < i);
@@ -737,6 +739,26 @@ fn tighten_plan(
         })
         .collect();
     (tight, stretches)
+}
+
+/// Whether the path `after` leaves a coverable cell uncovered that the
+/// path `before` covered (a tool of `tool` metres, the metrics' own
+/// coverage). `before`'s cells are only worked out where `after` misses
+/// a coverable cell: a complete plan costs one coverage test, not two.
+fn loses_coverage(
+    frame: &MapFrame,
+    coverable: &Grid<bool>,
+    tool: f64,
+    before: &[Point],
+    after: &[Point],
+) -> bool {
+    let reached = covered_cells(frame, after, tool);
+    let missed: Vec<Cell> = coverable.true_cells().filter(|&c| !reached[c]).collect();
+    if missed.is_empty() {
+        return false;
+    }
+    let was = covered_cells(frame, before, tool);
+    missed.into_iter().any(|c| was[c])
 }
 
 /// Scores a finished plan.
@@ -955,6 +977,49 @@ mod tests {
         let n = &on.evaluation.metrics;
         assert_eq!((n.coverage, n.collisions), (1.0, 0));
         assert!(n.est_time_s <= m.est_time_s + 1e-9);
+    }
+
+    #[test]
+    fn a_tightening_that_uncovers_a_cell_is_caught() {
+        // A 1 × 6 corridor, tool radius 0.5 (a cell's centre within half a
+        // cell of the path, as sampled, is covered).
+        let (map, _) = oxcover_grid::io::parse_ascii("......").unwrap();
+        let frame = map.frame();
+        let coverable = Grid::new(6, 1, true);
+        let along = |x0: f64, x1: f64| vec![Point::new(x0, 0.5), Point::new(x1, 0.5)];
+        let whole = along(0.5, 5.5);
+        // Nothing lost: the same cells, or a path that covers them all.
+        assert!(!loses_coverage(frame, &coverable, 0.5, &whole, &whole));
+        assert!(!loses_coverage(
+            frame,
+            &coverable,
+            0.5,
+            &along(1.5, 5.5),
+            &whole
+        ));
+        // The last cell dropped, which `before` covered.
+        assert!(loses_coverage(
+            frame,
+            &coverable,
+            0.5,
+            &whole,
+            &along(0.5, 4.5)
+        ));
+        // A cell `before` missed too is not a loss.
+        assert!(!loses_coverage(
+            frame,
+            &coverable,
+            0.5,
+            &along(0.5, 4.5),
+            &along(0.5, 4.5)
+        ));
+        assert!(loses_coverage(
+            frame,
+            &coverable,
+            0.5,
+            &along(0.5, 4.5),
+            &along(0.5, 3.5)
+        ));
     }
 
     #[test]
