@@ -36,13 +36,16 @@
 //!
 //!    One angle rarely suits every part of a region: a corridor's arm, or
 //!    a strip beside a room, hatched across turns every few lanes. So each
-//!    chain whose links and U-turns are a fifth of its time or more has its
-//!    area (the lane-mask cells within half a line step of its lanes)
-//!    hatched again at the two wall directions; where the model finds that
-//!    at least 20 % faster, the area's new chains replace it (the order
-//!    below then places them like any other). Measured on the ipa plans
-//!    and the ROS maps, rooms on: 5906 → 5887 s and 4937 → 4902 s mean
-//!    estimated time (`docs/efficiency.md`).
+//!    chain is cut where its lanes' extent jumps (a band and the arm that
+//!    leaves it share a chain when each line's run overlaps the next one
+//!    to one), and each piece whose links and U-turns are a fifth of its
+//!    time or more has its area (the lane-mask cells within half a line
+//!    step of its lanes) hatched again at the two wall directions; where
+//!    the model finds the pieces, so treated, at least 20 % faster than
+//!    the chain, they replace it (the order below then places them like
+//!    any other chain). Measured on the ipa plans and the ROS maps, rooms
+//!    on: 5906 → 5834 s and 4937 → 4898 s mean estimated time
+//!    (`docs/efficiency.md`).
 //!
 //! **Order.** Loops (entered and left at one of eight points) and chains
 //! (entered at one of four corners, left at the opposite end) are ordered
@@ -889,11 +892,7 @@ impl Hatch<'_> {
             .unwrap_or(self.spacing);
         let replaced: Vec<Option<(Vec<Chain>, f64)>> = chains
             .par_iter()
-            .map(|chain| {
-                (chain.lanes.len() >= REHATCH_MIN_LANES && self.may_gain(chain))
-                    .then(|| self.best_hatch(chain, step, angles))
-                    .flatten()
-            })
+            .map(|chain| self.improve(chain, step, angles))
             .collect();
         let mut out = Vec::with_capacity(chains.len());
         let mut saving = 0.0;
@@ -919,16 +918,64 @@ impl Hatch<'_> {
         overhead >= (1.0 - REHATCH_GAIN) * chain.time(self.time, self.spacing)
     }
 
-    /// The chains of the angle that hatches `chain`'s area fastest, if
-    /// that beats `chain` (`step` apart from its neighbouring lines), and
-    /// the modelled seconds saved. Worked out in the area's bounding box.
-    fn best_hatch(&self, chain: &Chain, step: f64, angles: &[f64]) -> Option<(Vec<Chain>, f64)> {
+    /// `chain` cut into its pieces ([`pieces_at_jumps`]), each re-hatched
+    /// where the model finds that faster (a piece with its links and turns
+    /// as [`Self::may_gain`] asks), if the pieces together beat the chain
+    /// by [`REHATCH_GAIN`]; and the modelled seconds saved.
+    fn improve(&self, chain: &Chain, step: f64, angles: &[f64]) -> Option<(Vec<Chain>, f64)> {
+        if chain.lanes.len() < REHATCH_MIN_LANES {
+            return None;
+        }
+        let pieces = pieces_at_jumps(chain);
+        let whole = pieces.len() == 1;
+        if whole && !self.may_gain(chain) {
+            return None;
+        }
+        let mut here = if whole {
+            None
+        } else {
+            Some(self.hatch_area(chain, step, &[])?.0)
+        };
+        let mut total = 0.0;
+        let mut out = Vec::new();
+        for piece in pieces {
+            let eligible = piece.lanes.len() >= REHATCH_MIN_LANES && self.may_gain(&piece);
+            let (own, alternative) =
+                self.hatch_area(&piece, step, if eligible { angles } else { &[] })?;
+            if whole {
+                here = Some(own);
+            }
+            match alternative {
+                Some((t, chains)) if t < own => {
+                    total += t;
+                    out.extend(chains);
+                }
+                _ => {
+                    total += own;
+                    out.push(piece);
+                }
+            }
+        }
+        let here = here?;
+        (total < REHATCH_GAIN * here).then_some((out, here - total))
+    }
+
+    /// The modelled seconds of `chain` over its area (the lane-mask cells
+    /// within half a line step, `step`, of its lanes; detours for what its
+    /// lanes leave of it), and the fastest hatching of that area at one of
+    /// `angles` with its seconds. Worked out in the area's bounding box.
+    #[allow(clippy::type_complexity)]
+    fn hatch_area(
+        &self,
+        chain: &Chain,
+        step: f64,
+        angles: &[f64],
+    ) -> Option<(f64, Option<(f64, Vec<Chain>)>)> {
         let (w, h) = (self.lane_mask.width(), self.lane_mask.height());
         let half = step / 2.0 + 1e-9;
         let ends: Vec<GridPoint> = chain.lanes.iter().flat_map(|l| [l.a, l.b]).collect();
         let (r0, r1, c0, c1) = box_of(&ends, half, w, h);
         let (bw, bh) = (c1.checked_sub(c0)?, r1.checked_sub(r0)?);
-        let at = |c: Cell| Cell::new(c.row + r0, c.col + c0);
         let mut mask = Grid::new(bw, bh, false);
         for l in &chain.lanes {
             let (lr0, lr1, lc0, lc1) = box_of(&[l.a, l.b], half, w, h);
@@ -941,12 +988,10 @@ impl Hatch<'_> {
                 }
             }
         }
-        let cells = mask.count_true();
-        if cells == 0 {
+        let area = mask.count_true() as f64;
+        if area == 0.0 {
             return None;
         }
-        let plannable = Grid::from_fn(bw, bh, |c: Cell| self.plannable[at(c)]);
-        let area = cells as f64;
         let cost = |chains: &[Chain], step: f64| {
             let t: f64 = chains.iter().map(|c| c.time(self.time, self.spacing)).sum();
             let lanes: f64 = chains.iter().flat_map(|c| &c.lanes).map(Lane::length).sum();
@@ -954,6 +999,12 @@ impl Hatch<'_> {
             t + 3.0 * self.time.time(uncovered / self.spacing, 0.0)
         };
         let here = cost(std::slice::from_ref(chain), step);
+        if angles.is_empty() {
+            return Some((here, None));
+        }
+        let plannable = Grid::from_fn(bw, bh, |c: Cell| {
+            self.plannable[Cell::new(c.row + r0, c.col + c0)]
+        });
         let mut best: Option<(f64, Vec<Chain>)> = None;
         for &theta in angles {
             let (chains, step) = chains_at(&plannable, &mask, theta, self.spacing, self.inset);
@@ -962,9 +1013,8 @@ impl Hatch<'_> {
                 best = Some((t, chains));
             }
         }
-        let (t, chains) = best?;
-        (t < REHATCH_GAIN * here).then(|| {
-            let shift = Vector::new(c0 as f64, r0 as f64);
+        let shift = Vector::new(c0 as f64, r0 as f64);
+        let best = best.map(|(t, chains)| {
             let chains = chains
                 .into_iter()
                 .map(|c| Chain {
@@ -978,9 +1028,42 @@ impl Hatch<'_> {
                         .collect(),
                 })
                 .collect();
-            (chains, here - t)
-        })
+            (t, chains)
+        });
+        Some((here, best))
     }
+}
+
+/// Least overlap, as a share of the longer lane, of two neighbouring lanes
+/// of one piece of a chain (below it, an arm leaves a band).
+const JUMP_OVERLAP: f64 = 0.5;
+
+/// `chain`'s lanes cut into runs where a lane overlaps its neighbour by
+/// less than [`JUMP_OVERLAP`] of the longer of the two (along the lanes):
+/// a band and the arm that leaves it, which no single angle suits.
+fn pieces_at_jumps(chain: &Chain) -> Vec<Chain> {
+    let mut out = Vec::new();
+    let mut run: Vec<Lane> = Vec::new();
+    for &lane in &chain.lanes {
+        if let Some(&last) = run.last() {
+            let d = (last.b - last.a) / last.length().max(1e-12);
+            let span = |l: Lane| {
+                let (u, v) = (l.a.coords.dot(&d), l.b.coords.dot(&d));
+                (u.min(v), u.max(v))
+            };
+            let ((a0, a1), (b0, b1)) = (span(last), span(lane));
+            if a1.min(b1) - a0.max(b0) < JUMP_OVERLAP * (a1 - a0).max(b1 - b0) {
+                out.push(Chain {
+                    lanes: std::mem::take(&mut run),
+                });
+            }
+        }
+        run.push(lane);
+    }
+    if !run.is_empty() {
+        out.push(Chain { lanes: run });
+    }
+    out
 }
 
 /// Rows `r0..r1` and columns `c0..c1` of a `w × h` grid whose cells may
@@ -1656,6 +1739,37 @@ mod tests {
             "{} {}",
             lanes(&after),
             lanes(&before)
+        );
+    }
+
+    /// An L: a 120 × 12 band along x and a 12 × 90 arm down from its east
+    /// end. Hatched along x, band and arm are one chain (each line's run
+    /// overlaps the next one to one); cut where the lanes shrink from 120
+    /// to 12 cells, the arm is re-hatched down its length and the band's
+    /// two lanes stay.
+    #[test]
+    fn an_arm_that_shares_a_chain_with_its_band_is_cut_off_and_rehatched() {
+        let mask = Grid::from_fn(120, 102, |c: Cell| c.row < 12 || c.col >= 108);
+        let (before, after, saving) = rehatched(&mask, 0.0);
+        assert_eq!(before.len(), 1, "{before:?}");
+        let pieces = pieces_at_jumps(&before[0]);
+        let lens: Vec<usize> = pieces.iter().map(|c| c.lanes.len()).collect();
+        assert_eq!(lens[0], 2, "{lens:?}");
+        assert_eq!(lens.iter().sum::<usize>(), before[0].lanes.len());
+        assert!(saving > 0.0);
+        assert_eq!(after.iter().find(|c| c.lanes.len() == 2), Some(&pieces[0]));
+        let down = after
+            .iter()
+            .flat_map(|c| &c.lanes)
+            .filter(|l| (l.b.x - l.a.x).abs() < 1e-9 && l.length() > 80.0)
+            .count();
+        assert!(down >= 2, "{after:?}");
+        assert!(
+            after
+                .iter()
+                .flat_map(|c| &c.lanes)
+                .all(|l| l.length() > 80.0),
+            "{after:?}"
         );
     }
 
