@@ -126,7 +126,7 @@ impl Planner for Lanes {
     }
 
     fn summary(&self) -> &'static str {
-        "edge loops along walls and furniture, then straight lanes at the region's fastest angle, ordered by estimated time"
+        "edge loops along walls and furniture, then straight lanes at the region's fastest angle (parts it does not suit hatched again along their walls), ordered by estimated time"
     }
 
     fn options(&self) -> PlannerOptions {
