@@ -710,7 +710,7 @@ fn box_cells(pts: &[GridPoint], r: f64) -> usize {
 
 /// The rows and columns of a `w × h` grid whose centres may lie within
 /// `r` of the box round `pts`.
-fn cell_box(
+pub(crate) fn cell_box(
     pts: &[GridPoint],
     r: f64,
     (w, h): (usize, usize),
@@ -1072,6 +1072,23 @@ mod tests {
         }
     }
 
+    /// Detours reaching 1 cell (no fragile margin) within `search` cells,
+    /// at [`time`]'s speeds.
+    fn reach_one<'a>(
+        plannable: &'a Grid<bool>,
+        coverable: &'a Grid<bool>,
+        search: f64,
+    ) -> Detours<'a> {
+        Detours {
+            plannable,
+            coverable,
+            reach: 1.0,
+            fragile: 0.0,
+            search,
+            time: time(),
+        }
+    }
+
     /// Cells within `r` of one of the contract's samples of `pts`.
     fn sampled(w: usize, h: usize, pts: &[GridPoint], r: f64) -> Grid<bool> {
         let mut g = Grid::new(w, h, false);
@@ -1108,14 +1125,7 @@ mod tests {
         ]);
         let coverable = plannable.clone();
         let path = vec![GridPoint::new(0.5, 2.0), GridPoint::new(20.5, 2.0)];
-        let d = Detours {
-            plannable: &plannable,
-            coverable: &coverable,
-            reach: 1.0,
-            fragile: 0.0,
-            search: 2.0,
-            time: time(),
-        };
+        let d = reach_one(&plannable, &coverable, 2.0);
         let (out, _) = insert_detours(&path, &d);
         assert_eq!(out.len(), path.len() + 3, "one V: {out:?}");
         assert_eq!(out.first(), path.first());
@@ -1165,12 +1175,8 @@ mod tests {
         let path = bent_at(1.45);
         let tightened = |fragile: f64| {
             let d = Detours {
-                plannable: &plannable,
-                coverable: &coverable,
-                reach: 1.0,
                 fragile,
-                search: 2.0,
-                time: time(),
+                ..reach_one(&plannable, &coverable, 2.0)
             };
             tighten(&path, &d, reach_counts(&path, &d)).0
         };
@@ -1193,14 +1199,7 @@ mod tests {
         // Rows 0 and 1 are room 1, rows 2 and 3 room 2.
         let labels = Grid::from_fn(10, 4, |c| if c.row < 2 { 1u32 } else { 2 });
         let path = bent_at(3.5);
-        let d = Detours {
-            plannable: &plannable,
-            coverable: &coverable,
-            reach: 1.0,
-            fragile: 0.0,
-            search: 2.0,
-            time: time(),
-        };
+        let d = reach_one(&plannable, &coverable, 2.0);
         let room_of = |p: GridPoint| labels[cell_of(&labels, p).unwrap()];
         let (moved, kept, _) = tighten_from(&path, &d, reach_counts(&path, &d), 0, None);
         assert_eq!(kept, vec![0, 1, 2]);
@@ -1225,14 +1224,7 @@ mod tests {
         let mut coverable = plannable.clone();
         coverable[Cell::new(2, 2)] = true;
         let path = vec![GridPoint::new(0.5, 0.5), GridPoint::new(4.5, 0.5)];
-        let d = Detours {
-            plannable: &plannable,
-            coverable: &coverable,
-            reach: 1.0,
-            fragile: 0.0,
-            search: 3.0,
-            time: time(),
-        };
+        let d = reach_one(&plannable, &coverable, 3.0);
         let (out, _) = insert_detours(&path, &d);
         assert_eq!(out, path);
     }
@@ -1253,14 +1245,7 @@ mod tests {
         let path: Vec<GridPoint> = (0..20)
             .map(|i| GridPoint::new(f64::from(i) + 0.5, if i % 2 == 0 { 1.1 } else { 1.9 }))
             .collect();
-        let d = Detours {
-            plannable: &plannable,
-            coverable: &coverable,
-            reach: 1.0,
-            fragile: 0.0,
-            search: 2.0,
-            time: time(),
-        };
+        let d = reach_one(&plannable, &coverable, 2.0);
         let (out, n) = tighten(&path, &d, reach_counts(&path, &d));
         assert!(n > 0);
         let covered = sampled(20, 3, &out, 1.0);

@@ -86,7 +86,7 @@ use oxcover_grid::{Cell, Grid, Vector};
 
 use crate::buckets::Buckets;
 use crate::detours::{
-    Detours, heading_change, insert_detours, metric_reach, polyline_time, tighten,
+    Detours, cell_box, heading_change, insert_detours, metric_reach, polyline_time, tighten,
 };
 use crate::error::{Error, Result};
 use crate::metre_path::PathBuilder;
@@ -249,9 +249,10 @@ fn plan_lanes(
         if i >= 2 {
             cost *= WALL_PREFERENCE;
         }
-        (cost, chains)
+        (cost, chains, step)
     };
-    let mut scored: Vec<(f64, Vec<Chain>)> = candidates.par_iter().enumerate().map(score).collect();
+    let mut scored: Vec<(f64, Vec<Chain>, f64)> =
+        candidates.par_iter().enumerate().map(score).collect();
     // The cheapest few angles, where near ties, are compared with their
     // transits too: the order of loops and chains from the start to the
     // exit (a direction that leaves a door's stub as chains of its own, or
@@ -273,7 +274,7 @@ fn plan_lanes(
         .into_iter()
         .take(ordered_count)
         .enumerate()
-        .filter(|(i, (cost, _))| *i == 0 || *cost <= tie * cheapest)
+        .filter(|(i, (cost, _, _))| *i == 0 || *cost <= tie * cheapest)
         .map(|(_, c)| c);
     let mut ordered: Vec<(f64, Vec<Chain>, Tour)> = Vec::new();
     // Where one angle does not suit every part of the region (an arm of a
@@ -287,10 +288,12 @@ fn plan_lanes(
         inset: line_inset,
         time: &cell_time,
     };
+    // The first two candidates: the wall directions (the grid's axes for
+    // a tool narrower than a cell).
     let wall_angles: Vec<f64> = candidates.iter().take(2).copied().collect();
-    for (cost, chains) in near_ties {
+    for (cost, chains, step) in near_ties {
         let (chains, saving) = if angle_deg.is_none() {
-            hatch.rehatch(chains, &wall_angles)
+            hatch.rehatch(chains, step, &wall_angles)
         } else {
             (chains, 0.0)
         };
@@ -878,18 +881,8 @@ impl Hatch<'_> {
     /// one of its lanes) re-hatched at the angle of `angles` whose chains
     /// the model finds fastest there, where that beats the chain by
     /// [`REHATCH_GAIN`]; and the modelled seconds saved.
-    fn rehatch(&self, chains: Vec<Chain>, angles: &[f64]) -> (Vec<Chain>, f64) {
-        // The lines' step: the same for every chain of one angle.
-        let step = chains
-            .iter()
-            .find_map(|c| {
-                c.lanes.windows(2).next().map(|l| {
-                    let (a, b) = (l[0], l[1]);
-                    let d = (a.b - a.a) / a.length().max(1e-12);
-                    (b.a - a.a).dot(&Vector::new(-d.y, d.x)).abs()
-                })
-            })
-            .unwrap_or(self.spacing);
+    /// `step` is the distance between the chains' lines ([`chains_at`]).
+    fn rehatch(&self, chains: Vec<Chain>, step: f64, angles: &[f64]) -> (Vec<Chain>, f64) {
         let replaced: Vec<Option<(Vec<Chain>, f64)>> = chains
             .par_iter()
             .map(|chain| self.improve(chain, step, angles))
@@ -974,13 +967,19 @@ impl Hatch<'_> {
         let (w, h) = (self.lane_mask.width(), self.lane_mask.height());
         let half = step / 2.0 + 1e-9;
         let ends: Vec<GridPoint> = chain.lanes.iter().flat_map(|l| [l.a, l.b]).collect();
-        let (r0, r1, c0, c1) = box_of(&ends, half, w, h);
-        let (bw, bh) = (c1.checked_sub(c0)?, r1.checked_sub(r0)?);
+        // A cell's margin round the area: a lane may graze a corner of the
+        // cell beside the one it was sampled in.
+        let (rows, cols) = cell_box(&ends, half + 1.0, (w, h));
+        let (r0, c0) = (rows.start, cols.start);
+        let (bw, bh) = (cols.len(), rows.len());
+        if bw == 0 || bh == 0 {
+            return None;
+        }
         let mut mask = Grid::new(bw, bh, false);
         for l in &chain.lanes {
-            let (lr0, lr1, lc0, lc1) = box_of(&[l.a, l.b], half, w, h);
-            for row in lr0..lr1 {
-                for col in lc0..lc1 {
+            let (lane_rows, lane_cols) = cell_box(&[l.a, l.b], half, (w, h));
+            for row in lane_rows {
+                for col in lane_cols.clone() {
                     let c = Cell::new(row, col);
                     if self.lane_mask[c] && segment_distance(l.a, l.b, cell_center(c)) <= half {
                         mask[Cell::new(row - r0, col - c0)] = true;
@@ -1064,21 +1063,6 @@ fn pieces_at_jumps(chain: &Chain) -> Vec<Chain> {
         out.push(Chain { lanes: run });
     }
     out
-}
-
-/// Rows `r0..r1` and columns `c0..c1` of a `w × h` grid whose cells may
-/// have their centres within `r` of the box round `pts`.
-fn box_of(pts: &[GridPoint], r: f64, w: usize, h: usize) -> (usize, usize, usize, usize) {
-    let (mut lo, mut hi) = (pts[0], pts[0]);
-    for p in pts {
-        lo = GridPoint::new(lo.x.min(p.x), lo.y.min(p.y));
-        hi = GridPoint::new(hi.x.max(p.x), hi.y.max(p.y));
-    }
-    let c0 = (lo.x - r - 0.5).floor().max(0.0) as usize;
-    let r0 = (lo.y - r - 0.5).floor().max(0.0) as usize;
-    let c1 = ((hi.x + r + 0.5).ceil().max(0.0) as usize).min(w);
-    let r1 = ((hi.y + r + 0.5).ceil().max(0.0) as usize).min(h);
-    (r0, r1, c0, c1)
 }
 
 /// Pushes the clear sub-runs of `[a, b]` on line `v` into `out`.
@@ -1697,9 +1681,18 @@ mod tests {
             inset,
             time: &time,
         };
-        let (chains, _) = chains_at(&plannable, mask, theta, spacing, inset);
-        let (new, saving) = hatch.rehatch(chains.clone(), &[0.0, PI / 2.0]);
+        let (chains, step) = chains_at(&plannable, mask, theta, spacing, inset);
+        let (new, saving) = hatch.rehatch(chains.clone(), step, &[0.0, PI / 2.0]);
         (chains, new, saving)
+    }
+
+    /// How many lanes of `chains` run along y and are longer than `min`.
+    fn vertical_lanes(chains: &[Chain], min: f64) -> usize {
+        chains
+            .iter()
+            .flat_map(|c| &c.lanes)
+            .filter(|l| (l.b.x - l.a.x).abs() < 1e-9 && l.length() > min)
+            .count()
     }
 
     /// An H of lanes: two 12-cell-wide arms down the sides of a 120 × 102
@@ -1717,11 +1710,7 @@ mod tests {
         assert_eq!(before.iter().filter(|c| short(c)).count(), 4, "{before:?}");
         assert!(saving > 0.0);
         assert_eq!(after.iter().filter(|c| short(c)).count(), 0, "{after:?}");
-        let down = after
-            .iter()
-            .flat_map(|c| &c.lanes)
-            .filter(|l| (l.b.x - l.a.x).abs() < 1e-9 && l.length() > 40.0)
-            .count();
+        let down = vertical_lanes(&after, 40.0);
         assert!(down >= 8, "{after:?}");
         // The bar's chain is kept, and every lane stays in the mask.
         let bar = |c: &&Chain| c.lanes.iter().all(|l| l.length() > 100.0);
@@ -1758,11 +1747,7 @@ mod tests {
         assert_eq!(lens.iter().sum::<usize>(), before[0].lanes.len());
         assert!(saving > 0.0);
         assert_eq!(after.iter().find(|c| c.lanes.len() == 2), Some(&pieces[0]));
-        let down = after
-            .iter()
-            .flat_map(|c| &c.lanes)
-            .filter(|l| (l.b.x - l.a.x).abs() < 1e-9 && l.length() > 80.0)
-            .count();
+        let down = vertical_lanes(&after, 80.0);
         assert!(down >= 2, "{after:?}");
         assert!(
             after
