@@ -167,6 +167,22 @@ fn efficiency_section(root: &Path) -> anyhow::Result<()> {
             under(mean, 1e9)
         );
     }
+    let intel = root.join("target/criterion/efficiency_intel");
+    if let Ok((reference, _)) = estimate_ns(&intel.join("boustrophedon-rooms-off")) {
+        md += "\nThe same on `intel_map.png` (586×587 px, planned as one region, where the search for `lanes`' transit table weighed most; group `efficiency_intel`):\n\n| run | mean ms | sd ms | / reference | under 1 s |\n|---|---:|---:|---:|---|\n";
+        for name in ["boustrophedon-rooms-off", "lanes-rooms-on"] {
+            let Ok((mean, sd)) = estimate_ns(&intel.join(name)) else {
+                continue;
+            };
+            md += &format!(
+                "| {name} | {:.1} | {:.1} | {:.2} | {} |\n",
+                mean / 1e6,
+                sd / 1e6,
+                mean / reference,
+                under(mean, 1e9)
+            );
+        }
+    }
     crate::replace_section(&root.join("docs/benchmarks.md"), "efficiency", &md)?;
     Ok(())
 }

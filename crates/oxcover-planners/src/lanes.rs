@@ -54,7 +54,9 @@
 //! exact dynamic programme choosing every node's entry for that order, its
 //! costs counting the turns at each junction too (off a node onto the
 //! straight line to the next entry, and off that line into the node). All
-//! costs are estimated seconds.
+//! costs are estimated seconds; a transit's is its straight line's, scaled
+//! by how far the walls make the way round (a breadth-first search from
+//! every end, over blocks of cells on a large region).
 //!
 //! Links that are not straight and clear take the shortest route,
 //! straightened (string pulling over an A* route); every segment is checked by exact
@@ -82,7 +84,7 @@ use rayon::prelude::*;
 use oxcover_distance::Wavefront;
 use oxcover_grid::edt::center_distance_sq;
 use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear, segment_distance};
-use oxcover_grid::{Cell, Grid, Vector};
+use oxcover_grid::{Cell, Dir4, Grid, Vector};
 
 use crate::buckets::Buckets;
 use crate::detours::{
@@ -259,7 +261,7 @@ fn plan_lanes(
     // ends its lanes far from the exit, costs there).
     scored.sort_by(|a, b| a.0.total_cmp(&b.0));
     let exit = input.exit.filter(|&c| plannable.is_set(c)).map(cell_center);
-    let mut region = Region::new(plannable);
+    let mut region = Region::new(plannable, tool);
     let cheapest = scored.first().map_or(0.0, |b| b.0);
     // A small plan can afford to build more angles than the model's best
     // few: then every one of them is ordered and built, whatever the model
@@ -1201,7 +1203,8 @@ impl Node<'_> {
 /// force: the straight-line time times the ratio of the 4-connected
 /// shortest route to the Manhattan distance (1 where a monotone staircase
 /// is clear, more where walls are in the way). One breadth-first search per
-/// distinct exit point; above `TRANSIT_BUDGET` cell visits (large regions
+/// distinct end point, over cells or, on a large region, over blocks of
+/// cells ([`Region`]); above [`TRANSIT_BUDGET`] cell visits (large regions
 /// with many nodes) straight lines only.
 struct Transits {
     /// Point ids of each node's option: (entry, exit).
@@ -1219,26 +1222,116 @@ struct Transits {
     turn_rate: f64,
 }
 
-/// The region the transit table searches, with a wavefront to reuse
-/// (made when first needed).
+/// The region the transit table searches, in square blocks of cells, with
+/// a wavefront over the blocks to reuse (made when first needed).
 struct Region<'a> {
     plannable: &'a Grid<bool>,
+    /// Side of a block (cells).
+    block: usize,
+    /// Plannable cells.
     cells: usize,
     wave: Option<Wavefront>,
 }
 
 impl<'a> Region<'a> {
-    fn new(plannable: &'a Grid<bool>) -> Self {
+    /// `plannable` searched cell by cell up to [`TRANSIT_EXACT_CELLS`]
+    /// plannable cells, beyond in blocks of about half a tool radius
+    /// ([`transit_block`]; `tool` in cells).
+    fn new(plannable: &'a Grid<bool>, tool: f64) -> Self {
+        let exact = plannable.count_true() <= TRANSIT_EXACT_CELLS;
+        Self::with_block(plannable, if exact { 1 } else { transit_block(tool) })
+    }
+
+    /// `plannable` searched in blocks of `block × block` cells.
+    fn with_block(plannable: &'a Grid<bool>, block: usize) -> Self {
         Self {
             plannable,
+            block: block.max(1),
             cells: plannable.count_true(),
             wave: None,
         }
     }
+
+    /// The block holding point `p`, if `p` is in a plannable cell.
+    fn block_of(&self, p: GridPoint) -> Option<Cell> {
+        cell_of(self.plannable, p)
+            .filter(|&c| self.plannable[c])
+            .map(|c| Cell::new(c.row / self.block, c.col / self.block))
+    }
+
+    /// A wavefront over the blocks: a block is open where it holds a
+    /// plannable cell, and a move between two blocks is allowed where a
+    /// plannable cell of one borders a plannable cell of the other across
+    /// their common side. The cells within a block are taken as connected,
+    /// so a wall thinner than a block less a cell may be passed through
+    /// inside one; a wall at least that thick never is. (With a robot
+    /// radius of a tool radius the C-space's walls are over twice as
+    /// thick as a block.)
+    fn wavefront(&self) -> Wavefront {
+        let k = self.block;
+        let p = self.plannable;
+        if k == 1 {
+            return Wavefront::new(p);
+        }
+        let (w, h) = (p.width(), p.height());
+        let (bw, bh) = (w.div_ceil(k), h.div_ceil(k));
+        let mut open = Grid::new(bw, bh, false);
+        // Whether block (r, c) joins its east / south neighbour.
+        let mut east = Grid::new(bw, bh, false);
+        let mut south = Grid::new(bw, bh, false);
+        for c in p.true_cells() {
+            let b = Cell::new(c.row / k, c.col / k);
+            open[b] = true;
+            if c.col % k == k - 1 && c.col + 1 < w && p[Cell::new(c.row, c.col + 1)] {
+                east[b] = true;
+            }
+            if c.row % k == k - 1 && c.row + 1 < h && p[Cell::new(c.row + 1, c.col)] {
+                south[b] = true;
+            }
+        }
+        let moves = Grid::from_fn(bw, bh, |b: Cell| {
+            let mut m = 0;
+            if b.row > 0 && south[Cell::new(b.row - 1, b.col)] {
+                m |= Dir4::North.bit();
+            }
+            if east[b] {
+                m |= Dir4::East.bit();
+            }
+            if south[b] {
+                m |= Dir4::South.bit();
+            }
+            if b.col > 0 && east[Cell::new(b.row, b.col - 1)] {
+                m |= Dir4::West.bit();
+            }
+            m
+        });
+        Wavefront::with_moves(&open, &moves)
+    }
 }
 
-/// Most cell visits the transit table may cost (points × plannable cells).
+/// Most cell visits the transit table may cost (points × plannable cells;
+/// its searches run over blocks, visiting fewer).
 const TRANSIT_BUDGET: f64 = 6e7;
+
+/// Side (cells) of the transit table's blocks for a tool of `tool` cells:
+/// about half a tool radius, at most [`TRANSIT_BLOCK_MAX`]. The table
+/// holds detour ratios (route length over Manhattan distance), which
+/// blocks of that size hardly change; a search over them visits a ninth of
+/// the cells at a 3-cell block.
+fn transit_block(tool: f64) -> usize {
+    // Truncation intended: a small whole number of cells.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    // (A tool radius computed as 0.15 / 0.05 is a hair under 3 cells.)
+    let k = (tool / 2.0 + 1e-6).round().max(1.0) as usize;
+    k.min(TRANSIT_BLOCK_MAX)
+}
+
+/// Most plannable cells a transit table searches cell by cell (small
+/// regions, where the searches cost little, keep exact ratios).
+const TRANSIT_EXACT_CELLS: usize = 40_000;
+
+/// Largest side of a transit block (cells).
+const TRANSIT_BLOCK_MAX: usize = 4;
 
 impl Transits {
     fn new(
@@ -1247,7 +1340,6 @@ impl Transits {
         region: &mut Region<'_>,
         t: &TimeModel,
     ) -> Self {
-        let plannable = region.plannable;
         let mut points: Vec<GridPoint> = Vec::new();
         let mut index: std::collections::HashMap<(u64, u64), usize> =
             std::collections::HashMap::new();
@@ -1275,11 +1367,13 @@ impl Transits {
         let n = points.len();
         let cells = region.cells as f64;
         let ratio = (n as f64 * cells <= TRANSIT_BUDGET && n * n <= 16_000_000).then(|| {
-            let wave = region.wave.get_or_insert_with(|| Wavefront::new(plannable));
-            let at: Vec<Option<Cell>> = points
-                .iter()
-                .map(|&p| cell_of(plannable, p).filter(|&c| plannable[c]))
-                .collect();
+            let at: Vec<Option<Cell>> = points.iter().map(|&p| region.block_of(p)).collect();
+            if region.wave.is_none() {
+                region.wave = Some(region.wavefront());
+            }
+            let Some(wave) = region.wave.as_mut() else {
+                return vec![1.0f32; n * n];
+            };
             let mut r = vec![1.0f32; n * n];
             for i in 0..n {
                 let Some(a) = at[i] else { continue };
@@ -1553,6 +1647,54 @@ mod tests {
         let one = on(1);
         assert!(one.len() > 8, "{one:?}");
         assert_eq!(one, on(4));
+    }
+
+    /// The transit table's blocks go round a wall as thick as a block less
+    /// a cell, wherever it lies across the blocks, and measure an open
+    /// floor as the cells do.
+    #[test]
+    fn transit_blocks_go_round_walls() {
+        let floor = |wall: Option<usize>| {
+            let rows: Vec<String> = (0..30)
+                .map(|r| {
+                    (0..60)
+                        .map(|c| {
+                            let in_wall = wall.is_some_and(|w| (w..w + 2).contains(&c));
+                            if in_wall && r < 27 { '#' } else { '.' }
+                        })
+                        .collect()
+                })
+                .collect();
+            let refs: Vec<&str> = rows.iter().map(String::as_str).collect();
+            mask(&refs)
+        };
+        let open = floor(None);
+        let region = Region::with_block(&open, 3);
+        let mut wave = region.wavefront();
+        let (a, b) = (GridPoint::new(4.5, 2.5), GridPoint::new(52.5, 20.5));
+        let (ba, bb) = (region.block_of(a).unwrap(), region.block_of(b).unwrap());
+        wave.propagate(&[ba]);
+        let manhattan = ba.row.abs_diff(bb.row) + ba.col.abs_diff(bb.col);
+        assert_eq!(wave.distance(bb), Some(manhattan as u32));
+        // A wall two cells thick, at each offset across the blocks, with a
+        // gap at the bottom: the way from one side to the other goes round.
+        for w in 29..32 {
+            let walled = floor(Some(w));
+            let region = Region::with_block(&walled, 3);
+            let mut wave = region.wavefront();
+            let (p, q) = (
+                GridPoint::new(w as f64 - 1.5, 0.5),
+                GridPoint::new(w as f64 + 3.5, 0.5),
+            );
+            let (bp, bq) = (region.block_of(p).unwrap(), region.block_of(q).unwrap());
+            wave.propagate(&[bp]);
+            // Down to the gap (rows 27-29, block row 9) and back up.
+            assert!(
+                wave.distance(bq).unwrap() >= 18,
+                "wall at {w}: {:?}",
+                wave.distance(bq)
+            );
+        }
     }
 
     /// A plan small enough to build every angle is never slower than the
