@@ -150,12 +150,35 @@ fn efficiency_section(root: &Path) -> anyhow::Result<()> {
     );
     let (reference, _) = estimate_ns(&group.join("boustrophedon-rooms-off"))
         .with_context(|| format!("no criterion results under {}", group.display()))?;
-    for name in [
-        "boustrophedon-rooms-off",
-        "lanes-rooms-off",
-        "lanes-rooms-on",
-        "boustrophedon-rooms-on",
-    ] {
+    md += &ratio_rows(
+        &group,
+        &[
+            "boustrophedon-rooms-off",
+            "lanes-rooms-off",
+            "lanes-rooms-on",
+            "boustrophedon-rooms-on",
+        ],
+        reference,
+    );
+    let intel = root.join("target/criterion/efficiency_intel");
+    if let Ok((reference, _)) = estimate_ns(&intel.join("boustrophedon-rooms-off")) {
+        md += "\nThe same on `intel_map.png` (586×587 px, planned as one region, where the search for `lanes`' transit table weighed most; group `efficiency_intel`):\n\n| run | mean ms | sd ms | / reference | under 1 s |\n|---|---:|---:|---:|---|\n";
+        md += &ratio_rows(
+            &intel,
+            &["boustrophedon-rooms-off", "lanes-rooms-on"],
+            reference,
+        );
+    }
+    crate::replace_section(&root.join("docs/benchmarks.md"), "efficiency", &md)?;
+    Ok(())
+}
+
+/// Table rows `| run | mean ms | sd ms | / reference | under 1 s |` of the
+/// criterion runs `names` under `group` that have results, against
+/// `reference` ns.
+fn ratio_rows(group: &Path, names: &[&str], reference: f64) -> String {
+    let mut md = String::new();
+    for name in names {
         let Ok((mean, sd)) = estimate_ns(&group.join(name)) else {
             continue;
         };
@@ -167,24 +190,7 @@ fn efficiency_section(root: &Path) -> anyhow::Result<()> {
             under(mean, 1e9)
         );
     }
-    let intel = root.join("target/criterion/efficiency_intel");
-    if let Ok((reference, _)) = estimate_ns(&intel.join("boustrophedon-rooms-off")) {
-        md += "\nThe same on `intel_map.png` (586×587 px, planned as one region, where the search for `lanes`' transit table weighed most; group `efficiency_intel`):\n\n| run | mean ms | sd ms | / reference | under 1 s |\n|---|---:|---:|---:|---|\n";
-        for name in ["boustrophedon-rooms-off", "lanes-rooms-on"] {
-            let Ok((mean, sd)) = estimate_ns(&intel.join(name)) else {
-                continue;
-            };
-            md += &format!(
-                "| {name} | {:.1} | {:.1} | {:.2} | {} |\n",
-                mean / 1e6,
-                sd / 1e6,
-                mean / reference,
-                under(mean, 1e9)
-            );
-        }
-    }
-    crate::replace_section(&root.join("docs/benchmarks.md"), "efficiency", &md)?;
-    Ok(())
+    md
 }
 
 /// A budget column's cell: whether `ns` is under `budget_ns`, a miss in bold.

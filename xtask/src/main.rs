@@ -20,7 +20,7 @@ enum Task {
         /// Reuse the last criterion results instead of running the benches.
         #[arg(long)]
         no_run: bool,
-        /// Only this bench: wavefront or grid_cover.
+        /// Only this bench: floorplan, efficiency, smooth, sensor_bcd, grid_cover or wavefront.
         #[arg(long)]
         only: Option<String>,
     },

@@ -1238,8 +1238,11 @@ impl<'a> Region<'a> {
     /// plannable cells, beyond in blocks of about half a tool radius
     /// ([`transit_block`]; `tool` in cells).
     fn new(plannable: &'a Grid<bool>, tool: f64) -> Self {
-        let exact = plannable.count_true() <= TRANSIT_EXACT_CELLS;
-        Self::with_block(plannable, if exact { 1 } else { transit_block(tool) })
+        let mut region = Self::with_block(plannable, 1);
+        if region.cells > TRANSIT_EXACT_CELLS {
+            region.block = transit_block(tool);
+        }
+        region
     }
 
     /// `plannable` searched in blocks of `block × block` cells.
