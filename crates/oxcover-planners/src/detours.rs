@@ -164,7 +164,8 @@ fn foot_on(a: GridPoint, b: GridPoint, m: GridPoint) -> GridPoint {
 
 /// Absolute heading change (rad) from `u` to `v`; 0 when either is null.
 pub(crate) fn heading_change(u: Vector, v: Vector) -> f64 {
-    if u.norm() < 1e-12 || v.norm() < 1e-12 {
+    // Squared: `norm() < 1e-12` without the square roots.
+    if u.norm_squared() < 1e-24 || v.norm_squared() < 1e-24 {
         return 0.0;
     }
     (u.x * v.y - u.y * v.x).atan2(u.x * v.x + u.y * v.y).abs()
@@ -290,6 +291,10 @@ fn stroke_until(
 ) -> bool {
     // A hair wider than `r`: the exact tests below decide.
     let rr = r + 1e-7;
+    // Centres within this of the segment are reached by a sample whatever
+    // the exact test says: an interval per row, not a test per cell
+    // ([`SURE_MARGIN`] keeps the interval's own rounding on the safe side).
+    let sure = r - SAMPLE_GAP - SURE_MARGIN;
     let row0 = (a.y.min(b.y) - rr - 0.5).ceil().max(0.0) as usize;
     let row1 = (a.y.max(b.y) + rr - 0.5).floor();
     if row1 < 0.0 {
@@ -307,22 +312,39 @@ fn stroke_until(
             continue;
         }
         let c1 = (c1 as usize).min(w.saturating_sub(1));
+        // The columns whose centres lie within `sure` (none when s0 > s1).
+        let (s0, s1) = match (sure > 0.0).then(|| capsule_span(a, b, sure, y)).flatten() {
+            Some((s0, s1)) => ((s0 - 0.5).ceil(), (s1 - 0.5).floor()),
+            None => (1.0, 0.0),
+        };
         for col in c0..=c1 {
             let c = Cell::new(row, col);
             if !want(c) {
                 continue;
             }
-            let q = cell_center(c);
-            // Well within reach of the segment, a sample reaches too;
-            // beyond it, none does; between, the samples decide.
-            let gap = segment_distance(a, b, q);
-            if (gap <= r - SAMPLE_GAP || (gap <= r && sample_reaches(a, b, q, r))) && stop(c) {
+            let x = col as f64;
+            let reached = if s0 <= x && x <= s1 {
+                debug_assert!(segment_distance(a, b, cell_center(c)) <= r - SAMPLE_GAP);
+                true
+            } else {
+                // Well within reach of the segment, a sample reaches too;
+                // beyond it, none does; between, the samples decide.
+                let q = cell_center(c);
+                let gap = segment_distance(a, b, q);
+                gap <= r - SAMPLE_GAP || (gap <= r && sample_reaches(a, b, q, r))
+            };
+            if reached && stop(c) {
                 return true;
             }
         }
     }
     false
 }
+
+/// How far inside the sure reach of [`stroke_until`] its per-row interval
+/// is drawn (cells): far beyond the rounding of the interval's square
+/// roots, far within the margin of [`sample_reaches`]' own quick test.
+const SURE_MARGIN: f64 = 1e-6;
 
 /// The x extent of the points of the line at height `y` within `r` of the
 /// segment `a → b` (the capsule is convex: one interval, the hull of its
@@ -506,6 +528,10 @@ const ROUNDS: usize = 8;
 /// How far towards the line of its neighbours a vertex is tried moved.
 const RELOCATIONS: [f64; 5] = [0.9, 0.75, 0.5, 0.25, 0.1];
 
+/// Ways a vertex is tried replaced: removed, moved by each of
+/// [`RELOCATIONS`], slid by each of [`SLIDES`] along either piece.
+const MOVES: usize = 1 + RELOCATIONS.len() + 2 * SLIDES.len();
+
 /// Largest box (cells) a vertex change looks at; larger triangles (the
 /// corners of long lanes) are kept without a look.
 const REMOVAL_BOX: usize = 4_000;
@@ -635,29 +661,39 @@ fn try_replace(
     };
     let here = local(&[pv]);
     let foot = foot_on(pu, px, pv);
-    let mut moves: Vec<Option<GridPoint>> = vec![None];
+    // Removal first, then the relocations, then the slides (in arrays: this
+    // runs for every vertex of every pass).
+    let mut moves = [None; MOVES];
+    let mut n = 1;
     for f in RELOCATIONS {
-        moves.push(Some(off_edges(pv + (foot - pv) * f)));
+        moves[n] = Some(off_edges(pv + (foot - pv) * f));
+        n += 1;
     }
     // Or slid along either piece (a V's shoulder slid outwards flattens it).
     for f in SLIDES {
-        moves.push(Some(off_edges(pv + (pu - pv) * f)));
-        moves.push(Some(off_edges(pv + (px - pv) * f)));
+        moves[n] = Some(off_edges(pv + (pu - pv) * f));
+        moves[n + 1] = Some(off_edges(pv + (px - pv) * f));
+        n += 2;
     }
     // The coverable cells only `v`'s two pieces reach: the same for every
     // move, found once (at the first move that saves time and is clear).
     let mut lone: Option<Vec<GridPoint>> = None;
-    let mut timed: Vec<(f64, Option<GridPoint>)> = moves
-        .into_iter()
-        .map(|m| (local(&m.into_iter().collect::<Vec<_>>()), m))
+    let mut timed = [(0.0, None); MOVES];
+    let mut saving = 0;
+    for m in moves {
+        let t = local(m.as_slice());
         // A move must save time; a removal need only not cost any (a
         // vertex on the line of its neighbours goes).
-        .filter(|(t, m)| *t < here - 1e-9 || (m.is_none() && *t <= here + 1e-9))
-        .collect();
+        if t < here - 1e-9 || (m.is_none() && t <= here + 1e-9) {
+            timed[saving] = (t, m);
+            saving += 1;
+        }
+    }
+    let timed = &mut timed[..saving];
     // The fastest first (stable: ties keep the order above).
     timed.sort_by(|a, b| a.0.total_cmp(&b.0));
-    for (_, m) in timed {
-        let mid: Vec<GridPoint> = m.into_iter().collect();
+    for &(_, m) in timed.iter() {
+        let mid = m.as_slice();
         let clear = match m {
             None => segment_clear(d.plannable, pu, px),
             Some(q) => {
@@ -671,13 +707,13 @@ fn try_replace(
             continue;
         }
         let lone = lone.get_or_insert_with(|| reached_only_by(d, count, pu, &[pv], px));
-        if loses_any(lone, pu, &mid, px, d.reach) {
+        if loses_any(lone, pu, mid, px, d.reach) {
             continue;
         }
         for (a, b) in pieces(pu, &[pv], px) {
             uncount_stroke(count, a, b, d.reach);
         }
-        for (a, b) in pieces(pu, &mid, px) {
+        for (a, b) in pieces(pu, mid, px) {
             count_stroke(count, a, b, d.reach);
         }
         match m {
