@@ -9,7 +9,7 @@
 use crate::admissible::TOLERANCE_CELLS;
 use crate::frame::MapFrame;
 use crate::grid::{Cell, Grid};
-use crate::math::Point;
+use crate::math::{Point, fast_ceil, fast_floor};
 
 /// Calls `f` on samples of the polyline `points`, at most `step` apart.
 ///
@@ -51,10 +51,10 @@ pub fn mark_disc(frame: &MapFrame, p: &Point, radius: f64, mask: &mut Grid<bool>
     if !(row.is_finite() && col.is_finite()) {
         return;
     }
-    let r0 = (row - reach).ceil().max(0.0);
-    let r1 = (row + reach).floor().min(mask.height() as f64 - 1.0);
-    let c0 = (col - reach).ceil().max(0.0);
-    let c1 = (col + reach).floor().min(mask.width() as f64 - 1.0);
+    let r0 = fast_ceil(row - reach).max(0.0);
+    let r1 = fast_floor(row + reach).min(mask.height() as f64 - 1.0);
+    let c0 = fast_ceil(col - reach).max(0.0);
+    let c1 = fast_floor(col + reach).min(mask.width() as f64 - 1.0);
     if r0 > r1 || c0 > c1 {
         return;
     }
@@ -151,10 +151,10 @@ fn mark_segment(
     while k0 < n {
         let k1 = (k0 + per_piece).min(n);
         let (a, b) = (at(k0), at(k1));
-        let r0 = (a.0.min(b.0) - reach).ceil().max(0.0);
-        let r1 = (a.0.max(b.0) + reach).floor().min(h - 1.0);
-        let c0 = (a.1.min(b.1) - reach).ceil().max(0.0);
-        let c1 = (a.1.max(b.1) + reach).floor().min(w - 1.0);
+        let r0 = fast_ceil(a.0.min(b.0) - reach).max(0.0);
+        let r1 = fast_floor(a.0.max(b.0) + reach).min(h - 1.0);
+        let c0 = fast_ceil(a.1.min(b.1) - reach).max(0.0);
+        let c1 = fast_floor(a.1.max(b.1) + reach).min(w - 1.0);
         if r0 <= r1 && c0 <= c1 {
             for r in r0 as usize..=r1 as usize {
                 for c in c0 as usize..=c1 as usize {

@@ -11,7 +11,7 @@
 //! without a yaw give bit-identical coordinates.
 
 use crate::grid::Cell;
-use crate::math::{Point, Real};
+use crate::math::{Point, Real, fast_floor};
 
 /// Placement of a `width × height` grid in the map frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -169,8 +169,8 @@ impl MapFrame {
             return None;
         }
         let (lx, ly) = self.map_to_image(p);
-        let fx = (lx / self.resolution).floor();
-        let fy = (ly / self.resolution).floor();
+        let fx = fast_floor(lx / self.resolution);
+        let fy = fast_floor(ly / self.resolution);
         if fx < 0.0 || fy < 0.0 || fx >= self.width as Real || fy >= self.height as Real {
             return None;
         }

@@ -10,7 +10,7 @@
 //! through walls.
 
 use crate::grid::{Cell, Grid};
-use crate::math::Point;
+use crate::math::{Point, fast_floor};
 
 /// A point in grid coordinates (see the module docs): the workspace's
 /// [`Point`], read as `x` along columns and `y` along rows (downwards).
@@ -31,7 +31,7 @@ pub fn cell_of<T>(grid: &Grid<T>, p: GridPoint) -> Option<Cell> {
     if !(x.is_finite() && y.is_finite()) || x < 0.0 || y < 0.0 {
         return None;
     }
-    let (c, r) = (x.floor() as usize, y.floor() as usize);
+    let (c, r) = (fast_floor(x) as usize, fast_floor(y) as usize);
     (c < grid.width() && r < grid.height()).then(|| Cell::new(r, c))
 }
 
@@ -67,8 +67,8 @@ pub fn traverse(
     if !(a.x.is_finite() && a.y.is_finite() && dx.is_finite() && dy.is_finite()) {
         return f(None, 0.0, 1.0);
     }
-    let mut cx = a.x.floor() as i64;
-    let mut cy = a.y.floor() as i64;
+    let mut cx = fast_floor(a.x) as i64;
+    let mut cy = fast_floor(a.y) as i64;
     let step_x: i64 = if dx > 0.0 { 1 } else { -1 };
     let step_y: i64 = if dy > 0.0 { 1 } else { -1 };
     // The parameter where the segment meets the next border of each axis,

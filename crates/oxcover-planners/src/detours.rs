@@ -36,6 +36,7 @@
 //! along its length); a missed cell looks at the segments of the buckets
 //! within its search radius. `O(missed · (segments near · candidates))`.
 
+use oxcover_grid::math::{fast_ceil, fast_floor};
 use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear, segment_distance};
 use oxcover_grid::{Cell, Grid, Vector};
 
@@ -138,11 +139,12 @@ const EDGE_GAP: f64 = 1e-4;
 /// cell it is in.
 fn off_edges(p: GridPoint) -> GridPoint {
     let pull = |v: f64| {
-        let f = v - v.floor();
+        let floor = fast_floor(v);
+        let f = v - floor;
         if f < EDGE_GAP {
-            v.floor() + EDGE_GAP
+            floor + EDGE_GAP
         } else if f > 1.0 - EDGE_GAP {
-            v.floor() + 1.0 - EDGE_GAP
+            floor + 1.0 - EDGE_GAP
         } else {
             v
         }
@@ -246,10 +248,10 @@ fn sample_reaches(a: GridPoint, b: GridPoint, q: GridPoint, r: f64) -> bool {
         return true;
     }
     let len = len2.sqrt();
-    let n = (len / 0.25 - 1e-9).ceil().max(1.0);
+    let n = fast_ceil(len / 0.25 - 1e-9).max(1.0);
     let s = t * n;
     let at = |k: f64| a + ab * (k / n);
-    (at(s.floor()) - q).norm() <= r || (at(s.ceil().min(n)) - q).norm() <= r
+    (at(fast_floor(s)) - q).norm() <= r || (at(fast_ceil(s).min(n)) - q).norm() <= r
 }
 
 /// Calls `f` once for every cell of a `w × h` grid whose centre one of the
@@ -295,8 +297,8 @@ fn stroke_until(
     // the exact test says: an interval per row, not a test per cell
     // ([`SURE_MARGIN`] keeps the interval's own rounding on the safe side).
     let sure = r - SAMPLE_GAP - SURE_MARGIN;
-    let row0 = (a.y.min(b.y) - rr - 0.5).ceil().max(0.0) as usize;
-    let row1 = (a.y.max(b.y) + rr - 0.5).floor();
+    let row0 = fast_ceil(a.y.min(b.y) - rr - 0.5).max(0.0) as usize;
+    let row1 = fast_floor(a.y.max(b.y) + rr - 0.5);
     if row1 < 0.0 {
         return false;
     }
@@ -306,15 +308,15 @@ fn stroke_until(
         let Some((x0, x1)) = capsule_span(a, b, rr, y) else {
             continue;
         };
-        let c0 = (x0 - 0.5).ceil().max(0.0) as usize;
-        let c1 = (x1 - 0.5).floor();
+        let c0 = fast_ceil(x0 - 0.5).max(0.0) as usize;
+        let c1 = fast_floor(x1 - 0.5);
         if c1 < 0.0 {
             continue;
         }
         let c1 = (c1 as usize).min(w.saturating_sub(1));
         // The columns whose centres lie within `sure` (none when s0 > s1).
         let (s0, s1) = match (sure > 0.0).then(|| capsule_span(a, b, sure, y)).flatten() {
-            Some((s0, s1)) => ((s0 - 0.5).ceil(), (s1 - 0.5).floor()),
+            Some((s0, s1)) => (fast_ceil(s0 - 0.5), fast_floor(s1 - 0.5)),
             None => (1.0, 0.0),
         };
         for col in c0..=c1 {
