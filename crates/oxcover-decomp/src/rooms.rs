@@ -321,16 +321,27 @@ pub fn merge_small_regions(labels: &mut Grid<u32>, min_cells: f64) {
     }
     let mut sizes = vec![0usize; n];
     let mut contacts: Vec<BTreeMap<u32, usize>> = vec![BTreeMap::new(); n];
-    for c in labels.cells() {
-        let l = labels[c];
-        if l == 0 {
-            continue;
+    // Each 4-neighbour pair once (a cell and the cells right of and below
+    // it), counted for both sides: by row slices, as this reads every cell.
+    let mut touch = |l: u32, m: u32| {
+        if l != 0 && m != 0 && l != m {
+            *contacts[l as usize - 1].entry(m).or_default() += 1;
+            *contacts[m as usize - 1].entry(l).or_default() += 1;
         }
-        sizes[l as usize - 1] += 1;
-        for (_, nb) in labels.neighbours4(c) {
-            let m = labels[nb];
-            if m != 0 && m != l {
-                *contacts[l as usize - 1].entry(m).or_default() += 1;
+    };
+    for row in 0..labels.height() {
+        let here = labels.row(row);
+        for (k, &l) in here.iter().enumerate() {
+            if l != 0 {
+                sizes[l as usize - 1] += 1;
+            }
+            if let Some(&right) = here.get(k + 1) {
+                touch(l, right);
+            }
+        }
+        if row + 1 < labels.height() {
+            for (&l, &below) in here.iter().zip(labels.row(row + 1)) {
+                touch(l, below);
             }
         }
     }

@@ -80,12 +80,21 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
         1.0
     };
     let at = |c: Cell, d: (isize, isize)| free.offset(c, d).filter(|&n| free[n]);
+    // The clearance of the free cells, 0 on the others and on a frame one
+    // cell wide round the map: read by index, as this looks at every cell.
+    let pw = w + 2;
+    let mut framed = vec![0u64; pw * (h + 2)];
+    for c in free.true_cells() {
+        framed[(c.row + 1) * pw + c.col + 1] = d4[c];
+    }
+    let steps = LINES.map(|(dr, dc)| dr * pw as isize + dc);
     let axis = Grid::from_fn(w, h, |c| {
+        let i = (c.row + 1) * pw + c.col + 1;
+        let v = framed[i];
         free[c]
-            && LINES.iter().any(|&(dr, dc)| {
-                let v = d4[c];
-                let a = at(c, (dr, dc)).map_or(0, |n| d4[n]);
-                let b = at(c, (-dr, -dc)).map_or(0, |n| d4[n]);
+            && steps.iter().any(|&s| {
+                let a = framed[i.wrapping_add_signed(s)];
+                let b = framed[i.wrapping_add_signed(-s)];
                 // Not lower than either side and higher than one: a
                 // crest across the line (a slope along a wall is no crest).
                 v >= a && v >= b && (v > a || v > b)
@@ -108,10 +117,17 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     }
     candidates.sort_unstable();
     let mut cut = Grid::new(w, h, false);
-    let mut chosen: Vec<(Cell, f64)> = Vec::new();
+    // The doors chosen so far, in square buckets at least as wide as the
+    // largest spacing tested below (both clearances at most `door_half`).
+    let bucket = (2.0 * door_half + 4.0).ceil() as usize;
+    let (bw, bh) = (w.div_ceil(bucket), h.div_ceil(bucket));
+    let mut chosen: Vec<Vec<(Cell, f64)>> = vec![Vec::new(); bw * bh];
     for &(_, c) in &candidates {
         let r = clearance(c);
-        if chosen.iter().any(|&(o, ro)| {
+        let (br, bc) = (c.row / bucket, c.col / bucket);
+        let near = (br.saturating_sub(1)..(br + 2).min(bh))
+            .flat_map(|i| (bc.saturating_sub(1)..(bc + 2).min(bw)).map(move |j| i * bw + j));
+        if near.flat_map(|b| &chosen[b]).any(|&(o, ro)| {
             let d = (o.row as f64 - c.row as f64).hypot(o.col as f64 - c.col as f64);
             d < r + ro + 3.0
         }) {
@@ -119,7 +135,7 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
         }
         let disc = r + 1.5;
         if narrows(free, &d4, c, door_half) {
-            chosen.push((c, r));
+            chosen[br * bw + bc].push((c, r));
             let k = disc.ceil() as isize;
             for dr in -k..=k {
                 for dc in -k..=k {
@@ -154,7 +170,14 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
         }
     }
     // Grow back over the cuts, then merge small regions.
-    let mut queue: VecDeque<Cell> = labels.cells().filter(|&c| labels[c] != 0).collect();
+    // Only labelled cells beside an unlabelled free one label anything (the
+    // others, taken first in the same order, would find nothing to grow
+    // into): the same rooms as from every labelled cell.
+    let open = |c: Cell| free.neighbours4(c).any(|(_, n)| free[n] && labels[n] == 0);
+    let mut queue: VecDeque<Cell> = labels
+        .cells()
+        .filter(|&c| labels[c] != 0 && open(c))
+        .collect();
     grow(free, &mut labels, &mut queue);
     // Regions made of cut cells only.
     label_the_rest(free, &mut labels, sizes.len() as u32 + 1);
