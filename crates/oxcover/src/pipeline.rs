@@ -525,8 +525,13 @@ fn plan_region(
         // tightened; rooms off keeps the nearest-first pass as it is (the
         // papers' experiments).
         let (route, whole, extra) = if request.rooms {
-            let tour = problem.boundary_tour_to(&raw, end, exit)?;
-            let pass = problem.boundary_pass(&raw, end)?;
+            // Independent: found in parallel (each works out what `raw`
+            // leaves uncovered).
+            let (tour, pass) = rayon::join(
+                || problem.boundary_tour_to(&raw, end, exit),
+                || problem.boundary_pass(&raw, end),
+            );
+            let (tour, pass) = (tour?, pass?);
             let (a, b) = (appended(&tour, true), appended(&pass, false));
             // Each tightened for time (as `lanes` tightens its path; the
             // two in parallel), then the faster kept, with the way on to the
