@@ -83,6 +83,7 @@ use rayon::prelude::*;
 
 use oxcover_distance::Wavefront;
 use oxcover_grid::edt::center_distance_sq;
+use oxcover_grid::math::{fast_ceil, fast_floor};
 use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear, segment_distance};
 use oxcover_grid::{Cell, Dir4, Grid, Vector};
 
@@ -759,13 +760,28 @@ fn chains_at(
     let n = GridPoint::new(-d.y, d.x);
     let (mut nmin, mut nmax) = (f64::INFINITY, f64::NEG_INFINITY);
     let (mut dmin, mut dmax) = (f64::INFINITY, f64::NEG_INFINITY);
-    for c in lane_mask.true_cells() {
-        let p = cell_center(c);
-        let (u, v) = (p.x * d.x + p.y * d.y, p.x * n.x + p.y * n.y);
-        nmin = nmin.min(v);
-        nmax = nmax.max(v);
-        dmin = dmin.min(u);
-        dmax = dmax.max(u);
+    // The mask's box (cells), for the samples below.
+    let (mut rmin, mut rmax, mut cmin, mut cmax) = (usize::MAX, 0, usize::MAX, 0);
+    for row in 0..lane_mask.height() {
+        let cells = lane_mask.row(row);
+        let (Some(first), Some(last)) = (
+            cells.iter().position(|&x| x),
+            cells.iter().rposition(|&x| x),
+        ) else {
+            continue;
+        };
+        (rmin, rmax) = (rmin.min(row), rmax.max(row));
+        (cmin, cmax) = (cmin.min(first), cmax.max(last));
+        // Along a row both projections are monotone in the column (so is
+        // their rounding): a row's first and last cells hold its extremes.
+        for col in [first, last] {
+            let p = cell_center(Cell::new(row, col));
+            let (u, v) = (p.x * d.x + p.y * d.y, p.x * n.x + p.y * n.y);
+            nmin = nmin.min(v);
+            nmax = nmax.max(v);
+            dmin = dmin.min(u);
+            dmax = dmax.max(u);
+        }
     }
     if !nmin.is_finite() {
         return (Vec::new(), spacing);
@@ -786,12 +802,42 @@ fn chains_at(
     // in one cell here and may be in its neighbour once in metres).
     let (u0, u1) = (dmin - 1.0 + 0.125, dmax + 1.0);
     let samples = ((u1 - u0) / 0.25).ceil() as usize;
+    // The samples of a line that may fall in the mask's box widened by a
+    // cell (the margin covers rounding): those before and after are
+    // outside the mask, and a run neither starts nor goes on there.
+    let in_box = |v: f64| -> std::ops::Range<usize> {
+        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+        for (dk, nk, k0, k1) in [
+            (d.x, n.x, cmin as f64 - 1.0, cmax as f64 + 2.0),
+            (d.y, n.y, rmin as f64 - 1.0, rmax as f64 + 2.0),
+        ] {
+            // u·dk + v·nk within [k0, k1].
+            if dk.abs() < 1e-12 {
+                if !(k0..=k1).contains(&(v * nk)) {
+                    return 0..0;
+                }
+            } else {
+                let (a, b) = ((k0 - v * nk) / dk, (k1 - v * nk) / dk);
+                lo = lo.max(a.min(b));
+                hi = hi.min(a.max(b));
+            }
+        }
+        if lo > hi {
+            return 0..0;
+        }
+        let first = fast_floor((lo - u0) / 0.25 - 1.0).max(0.0);
+        let last = fast_ceil((hi - u0) / 0.25 + 1.0).min(samples as f64);
+        if first > last {
+            return 0..0;
+        }
+        first as usize..last as usize + 1
+    };
     for j in 0..lines {
         let v = nmin + step * j as f64 + EDGE_NUDGE;
         let mut runs = Vec::new();
         let mut open: Option<f64> = None;
         let mut last_in = u0;
-        for s in 0..=samples {
+        for s in in_box(v) {
             let u = u0 + s as f64 * 0.25;
             let inside = cell_of(lane_mask, at(u, v)).is_some_and(|c| lane_mask[c]);
             match (inside, open) {
