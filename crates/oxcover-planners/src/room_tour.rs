@@ -42,27 +42,37 @@ impl RoomUnits {
         let (w, h) = (plannable.width(), plannable.height());
         let mut labels = Grid::new(w, h, 0u32);
         let mut sizes = Vec::new();
-        let mut stack = Vec::new();
-        for seed in plannable.true_cells() {
-            if labels[seed] != 0 {
+        let mut stack: Vec<usize> = Vec::new();
+        // By index into the row-major cells: this visits every cell of
+        // the map.
+        let (open, room_of) = (plannable.as_slice(), rooms.as_slice());
+        let ids = labels.as_mut_slice();
+        for seed in 0..open.len() {
+            if !open[seed] || ids[seed] != 0 {
                 continue;
             }
             let id = sizes.len() as u32 + 1;
-            let room = rooms[seed];
-            labels[seed] = id;
+            let room = room_of[seed];
+            ids[seed] = id;
             stack.push(seed);
             let mut n = 0;
-            while let Some(c) = stack.pop() {
+            while let Some(i) = stack.pop() {
                 n += 1;
-                for (_, nb) in plannable.neighbours4(c) {
-                    if plannable[nb] && labels[nb] == 0 && rooms[nb] == room {
-                        labels[nb] = id;
-                        stack.push(nb);
+                let col = i % w;
+                let west = (col > 0).then(|| i - 1);
+                let east = (col + 1 < w).then(|| i + 1);
+                let north = i.checked_sub(w);
+                let south = (i + w < open.len()).then(|| i + w);
+                for j in [north, east, south, west].into_iter().flatten() {
+                    if open[j] && ids[j] == 0 && room_of[j] == room {
+                        ids[j] = id;
+                        stack.push(j);
                     }
                 }
             }
             sizes.push(n);
         }
+        debug_assert_eq!(open.len(), w * h);
         let mut units = Self { labels, sizes };
         units.merge_small(min_cells);
         units
