@@ -223,6 +223,11 @@ impl<'a> PathBuilder<'a> {
             let Some(here) = cell_of(self.plannable, self.last()) else {
                 return Err(Error::Internal("path left the grid".into()));
             };
+            // Nothing wanted is left: the search below would visit every
+            // reachable cell to find none.
+            if !wanted.as_slice().contains(&true) {
+                return Ok(());
+            }
             let plannable = self.plannable;
             let wave = self.wave.get_or_insert_with(|| Wavefront::new(plannable));
             let Some(near) = cidt(wave, &[here], |c| wanted[c]) else {
