@@ -19,7 +19,8 @@
 //! - [`traverse`]: exact traversal of straight segments over a grid.
 //! - [`rotate`](mod@rotate): maps rotated about their centre, for rotation studies.
 //! - [`random`]: seeded random maps for experiments and property tests.
-//! - [`math`]: the metre-space point and vector types of the workspace.
+//! - [`math`]: the metre-space point and vector types of the workspace, and
+//!   `floor`/`ceil` for hot paths without a library call.
 //!
 //! ```
 //! use oxcover_grid::{io::parse_ascii, Coverability, DiscRobot};

@@ -1,5 +1,8 @@
 //! Metre-space types shared by the whole workspace.
 //!
+//! Also [`fast_floor`] and [`fast_ceil`]: `f64::floor` and `f64::ceil` for
+//! the hot paths that floor grid coordinates per cell or per sample.
+//!
 //! Every quantity in metres (waypoints, origins, offsets) uses these aliases on
 //! nalgebra, so algorithms are written once and callers never convert between
 //! point types. Cell-space quantities use [`crate::Cell`] instead.
