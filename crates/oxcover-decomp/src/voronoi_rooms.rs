@@ -119,7 +119,8 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     let mut cut = Grid::new(w, h, false);
     // The doors chosen so far, in square buckets at least as wide as the
     // largest spacing tested below (both clearances at most `door_half`).
-    let bucket = (2.0 * door_half + 4.0).ceil() as usize;
+    // (At least one cell, whatever the parameters: NaN gives 1.)
+    let bucket = (2.0 * door_half + 4.0).ceil().max(1.0) as usize;
     let (bw, bh) = (w.div_ceil(bucket), h.div_ceil(bucket));
     let mut chosen: Vec<Vec<(Cell, f64)>> = vec![Vec::new(); bw * bh];
     for &(_, c) in &candidates {
@@ -340,5 +341,27 @@ mod tests {
         let rooms = voronoi(&free, &params(0.2));
         assert_eq!(rooms.count(), 3, "{:?}", rooms.areas);
         assert_eq!(rooms.doors.len(), 2);
+    }
+
+    /// Door widths the CLI refuses still segment (as one room) when the
+    /// library is called with them, never panic.
+    #[test]
+    fn odd_door_widths_do_not_panic() {
+        let rows = vec!["....#....", ".........", "....#...."];
+        let free = ascii_mask(&rows).unwrap();
+        for door in [f64::NAN, -3.0, 0.0, f64::INFINITY, 1e300] {
+            let p = RoomParams {
+                door_width_m: door,
+                ..params(0.2)
+            };
+            let rooms = voronoi(&free, &p);
+            assert!(
+                rooms
+                    .labels
+                    .as_slice()
+                    .iter()
+                    .all(|&l| l <= rooms.areas.len() as u32)
+            );
+        }
     }
 }
