@@ -37,9 +37,18 @@ impl RoomUnits {
     /// room: such cells form units of their own), units below `min_cells`
     /// merged into a neighbour. Units are numbered in row-major order of
     /// their first cell.
+    ///
+    /// # Panics
+    /// If `rooms` is not the size of `plannable` (the cells are read by
+    /// index: labels of another grid would be read at the wrong cells).
     #[must_use]
     pub fn new(plannable: &Grid<bool>, rooms: &Grid<u32>, min_cells: usize) -> Self {
         let (w, h) = (plannable.width(), plannable.height());
+        assert_eq!(
+            (rooms.width(), rooms.height()),
+            (w, h),
+            "room labels must cover the plannable grid cell for cell"
+        );
         let mut labels = Grid::new(w, h, 0u32);
         let mut sizes = Vec::new();
         let mut stack: Vec<usize> = Vec::new();
@@ -72,7 +81,6 @@ impl RoomUnits {
             }
             sizes.push(n);
         }
-        debug_assert_eq!(open.len(), w * h);
         let mut units = Self { labels, sizes };
         units.merge_small(min_cells);
         units
