@@ -32,7 +32,7 @@
 //! at almost every anchor) and keeps the faster.
 
 use oxcover_distance::{Wavefront, cidt};
-use oxcover_grid::footprint::{mark_covered, mark_disc};
+use oxcover_grid::footprint::{covered_cells, mark_covered, mark_disc};
 use oxcover_grid::{Cell, Coverability, Grid, MapFrame, Point, TOLERANCE_CELLS};
 
 use crate::error::{Error, Result};
@@ -66,10 +66,33 @@ pub fn boundary_pass(
     points: &[Point],
     end: Cell,
 ) -> Result<BoundaryRoute> {
-    let Some(plan) = choose_anchors(frame, problem, points, end)? else {
+    boundary_pass_covered(frame, problem, covered_by(frame, problem, points), end)
+}
+
+/// [`boundary_pass`] given the cells the plan covers: `covered`, a grid of
+/// `frame`'s size as [`covered_cells`] finds it for the plan's polyline
+/// and the problem's tool radius (for a caller that has it already).
+///
+/// # Errors
+/// As [`boundary_pass`]; [`Error::Internal`] if `covered` is not of
+/// `frame`'s size.
+pub fn boundary_pass_covered(
+    frame: &MapFrame,
+    problem: &Coverability,
+    covered: Grid<bool>,
+    end: Cell,
+) -> Result<BoundaryRoute> {
+    let Some(plan) = choose_anchors(frame, problem, covered, end)? else {
         return Ok(BoundaryRoute::default());
     };
     nearest_first(frame, problem, plan, end)
+}
+
+/// The cells a plan's polyline `points` covers for `problem`'s tool, as the
+/// metrics find them.
+#[must_use]
+pub fn covered_by(frame: &MapFrame, problem: &Coverability, points: &[Point]) -> Grid<bool> {
+    covered_cells(frame, points, problem.robot.tool_radius)
 }
 
 /// The same cells covered by a better tour: the anchors are ordered by an
@@ -103,7 +126,23 @@ pub fn boundary_tour_to(
     end: Cell,
     exit: Option<Cell>,
 ) -> Result<BoundaryRoute> {
-    let Some(plan) = choose_anchors(frame, problem, points, end)? else {
+    let covered = covered_by(frame, problem, points);
+    boundary_tour_to_covered(frame, problem, covered, end, exit)
+}
+
+/// [`boundary_tour_to`] given the cells the plan covers (`covered`, as for
+/// [`boundary_pass_covered`]).
+///
+/// # Errors
+/// As [`boundary_pass_covered`].
+pub fn boundary_tour_to_covered(
+    frame: &MapFrame,
+    problem: &Coverability,
+    covered: Grid<bool>,
+    end: Cell,
+    exit: Option<Cell>,
+) -> Result<BoundaryRoute> {
+    let Some(plan) = choose_anchors(frame, problem, covered, end)? else {
         return Ok(BoundaryRoute::default());
     };
     toured(frame, problem, plan, end, exit)
@@ -118,11 +157,12 @@ struct AnchorPlan {
     targets: Vec<Vec<Cell>>,
 }
 
-/// Pending cells and their anchors; `None` when nothing is pending.
+/// Pending cells (coverable, not `covered`) and their anchors; `None` when
+/// nothing is pending.
 fn choose_anchors(
     frame: &MapFrame,
     problem: &Coverability,
-    points: &[Point],
+    covered: Grid<bool>,
     end: Cell,
 ) -> Result<Option<AnchorPlan>> {
     let plannable = &problem.reachable;
@@ -131,9 +171,15 @@ fn choose_anchors(
             "boundary pass starts at {end:?}, which is not plannable"
         )));
     }
-    let tool = problem.robot.tool_radius;
-    let mut covered = Grid::new(frame.width(), frame.height(), false);
-    mark_covered(frame, points, tool, &mut covered);
+    if (covered.width(), covered.height()) != (frame.width(), frame.height()) {
+        return Err(Error::Internal(format!(
+            "boundary pass given covered cells of {}x{}, not the map's {}x{}",
+            covered.width(),
+            covered.height(),
+            frame.width(),
+            frame.height()
+        )));
+    }
     let pending: Vec<Cell> = problem
         .coverable
         .true_cells()
@@ -401,6 +447,19 @@ mod tests {
         assert!(all.iter().all(|&c| problem.reachable[c]));
         let pts = centres(map.frame(), &all);
         assert_eq!(coverage(map.frame(), &problem, &pts), (60, 60));
+        // Given the lane's covered cells, the same pass and tour.
+        let lane_pts = centres(map.frame(), &lane);
+        let covered = covered_by(map.frame(), &problem, &lane_pts);
+        let end = Cell::new(2, 9);
+        let given = boundary_pass_covered(map.frame(), &problem, covered.clone(), end);
+        assert_eq!(given.unwrap(), r);
+        let tour = boundary_tour_to(map.frame(), &problem, &lane_pts, end, None).unwrap();
+        let given = boundary_tour_to_covered(map.frame(), &problem, covered, end, None);
+        assert_eq!(given.unwrap(), tour);
+        // Covered cells of another grid's size are refused.
+        let wrong = Grid::new(9, 6, false);
+        assert!(boundary_pass_covered(map.frame(), &problem, wrong.clone(), end).is_err());
+        assert!(boundary_tour_to_covered(map.frame(), &problem, wrong, end, None).is_err());
     }
 
     #[test]

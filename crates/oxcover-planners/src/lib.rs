@@ -72,7 +72,10 @@ mod testing;
 pub mod time;
 pub mod tour;
 
-pub use boundary_pass::{BoundaryRoute, boundary_pass, boundary_tour, boundary_tour_to};
+pub use boundary_pass::{
+    BoundaryRoute, boundary_pass, boundary_pass_covered, boundary_tour, boundary_tour_to,
+    boundary_tour_to_covered, covered_by,
+};
 pub use error::{Error, Result};
 pub use planner::{Planner, PlannerOptions, steps};
 pub use problem::{

@@ -30,7 +30,10 @@ use oxcover_grid::{
     TOLERANCE_CELLS, admissible, components4, coverable_cells, reachable,
 };
 
-use crate::boundary_pass::{BoundaryRoute, boundary_pass, boundary_tour, boundary_tour_to};
+use crate::boundary_pass::{
+    BoundaryRoute, boundary_pass, boundary_pass_covered, boundary_tour, boundary_tour_to,
+    boundary_tour_to_covered, covered_by,
+};
 use crate::detours::{Detours, Zone, metric_reach, reach_counts, tighten_from};
 use crate::error::{Error, Result};
 use crate::metre_path::{PathBuilder, grid_to_metres, metres_to_grid};
@@ -430,6 +433,22 @@ impl CoverageProblem {
         boundary_pass(&self.frame, &self.cells, points, end)
     }
 
+    /// The cells the polyline `points` (metres, map frame) covers with this
+    /// problem's tool, as the metrics find them ([`covered_by`]).
+    #[must_use]
+    pub fn covered_by(&self, points: &[Point]) -> Grid<bool> {
+        covered_by(&self.frame, &self.cells, points)
+    }
+
+    /// [`Self::boundary_pass`] given the cells the plan covers (`covered`,
+    /// as [`Self::covered_by`] finds them; [`boundary_pass_covered`]).
+    ///
+    /// # Errors
+    /// As [`boundary_pass_covered`].
+    pub fn boundary_pass_covered(&self, covered: Grid<bool>, end: Cell) -> Result<BoundaryRoute> {
+        boundary_pass_covered(&self.frame, &self.cells, covered, end)
+    }
+
     /// The route covering what `points` leaves uncovered, from the plannable
     /// cell `end`, as a straightened tour ([`boundary_tour`]).
     ///
@@ -503,6 +522,21 @@ impl CoverageProblem {
         exit: Option<Cell>,
     ) -> Result<BoundaryRoute> {
         boundary_tour_to(&self.frame, &self.cells, points, end, exit)
+    }
+
+    /// [`Self::boundary_tour_to`] given the cells the plan covers
+    /// (`covered`, as [`Self::covered_by`] finds them;
+    /// [`boundary_tour_to_covered`]).
+    ///
+    /// # Errors
+    /// As [`boundary_pass_covered`].
+    pub fn boundary_tour_to_covered(
+        &self,
+        covered: Grid<bool>,
+        end: Cell,
+        exit: Option<Cell>,
+    ) -> Result<BoundaryRoute> {
+        boundary_tour_to_covered(&self.frame, &self.cells, covered, end, exit)
     }
 }
 

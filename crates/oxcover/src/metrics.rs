@@ -19,7 +19,7 @@
 //! only when it lies at least resolution/4 from the last kept one; the final
 //! waypoint always ends the merged polyline.
 
-use oxcover_grid::footprint::{for_each_sample, mark_covered, mark_disc};
+use oxcover_grid::footprint::{for_each_sample, mark_covered};
 use oxcover_grid::math::{heading, wrap_angle};
 use oxcover_grid::{Coverability, DiscRobot, Grid, MapFrame, OccupancyGrid, Point};
 use oxcover_planners::TimeModel;
@@ -119,6 +119,11 @@ pub const MAX_SAMPLES: f64 = 5e8;
 
 /// Scores `points` against an existing coverage problem (its start should be
 /// the cell of the first waypoint).
+///
+/// The covered cells are found by [`mark_covered`]: the same cells as a disc
+/// round every sample ([`for_each_sample`],
+/// [`mark_disc`](oxcover_grid::footprint::mark_disc); property-tested in
+/// `oxcover-grid`), found segment by segment.
 #[must_use]
 pub fn evaluate_problem(
     frame: &MapFrame,
@@ -126,9 +131,23 @@ pub fn evaluate_problem(
     points: &[Point],
     params: &MetricParams,
 ) -> Evaluation {
+    let mut covered = Grid::new(frame.width(), frame.height(), false);
+    mark_covered(frame, points, problem.robot.tool_radius, &mut covered);
+    evaluate_covered(frame, problem, points, covered, params)
+}
+
+/// [`evaluate_problem`] given the cells `points` covers (`covered`, as
+/// [`mark_covered`] marks them on an empty grid of `frame`'s size with the
+/// problem's tool radius), for a caller that has them already.
+pub(crate) fn evaluate_covered(
+    frame: &MapFrame,
+    problem: Coverability,
+    points: &[Point],
+    covered: Grid<bool>,
+    params: &MetricParams,
+) -> Evaluation {
     let res = frame.resolution();
     let tool = problem.robot.tool_radius;
-    let mut covered = Grid::new(frame.width(), frame.height(), false);
     let mut samples = 0usize;
     let mut collisions = 0usize;
     for_each_sample(points, res / 4.0, |p| {
@@ -136,7 +155,6 @@ pub fn evaluate_problem(
         if !frame.cell_at(p).is_some_and(|c| problem.admissible[c]) {
             collisions += 1;
         }
-        mark_disc(frame, p, tool, &mut covered);
     });
     let coverable_cells = problem.coverable_count();
     let covered_cells = covered
@@ -186,6 +204,12 @@ pub fn coverage_of(frame: &MapFrame, problem: &Coverability, pieces: &[Vec<Point
     for piece in pieces {
         mark_covered(frame, piece, tool, &mut covered);
     }
+    covered_fraction(problem, &covered)
+}
+
+/// Covered coverable cells / coverable cells, the cells covered being
+/// `covered` (0 when nothing is coverable).
+pub(crate) fn covered_fraction(problem: &Coverability, covered: &Grid<bool>) -> f64 {
     let coverable = problem.coverable_count();
     if coverable == 0 {
         return 0.0;
@@ -320,6 +344,28 @@ mod tests {
         assert!((slow.est_time_s - (7.0 / 0.1 + PI)).abs() < 1e-9);
         assert!((slow.bound_time_s - 80.0).abs() < 1e-9);
         assert_eq!(m.samples, 1 + 12 + 4 + 12);
+    }
+
+    #[test]
+    fn covered_cells_are_a_disc_round_every_sample() {
+        // A slanted zig-zag over a rotated, offset frame: the cells the
+        // metrics count are those of the definition, a disc round each
+        // sample (the cells are found segment by segment).
+        let (map, _) = parse_ascii(&vec![".".repeat(40); 30].join("\n")).unwrap();
+        let map =
+            OccupancyGrid::new(map.cells().clone(), 0.05, Point::new(-0.4, 0.3)).with_yaw(0.4);
+        let f = *map.frame();
+        let pts: Vec<Point> = [(2, 2), (3, 37), (9, 5), (15, 30), (27, 33), (28, 1)]
+            .map(|(r, c)| f.cell_center(Cell::new(r, c)))
+            .to_vec();
+        let robot = DiscRobot::new(0.0, 0.13).unwrap();
+        let e = evaluate(&map, robot, &pts, &MetricParams::default()).unwrap();
+        let mut disc = Grid::new(40, 30, false);
+        for_each_sample(&pts, 0.05 / 4.0, |p| {
+            oxcover_grid::footprint::mark_disc(&f, p, 0.13, &mut disc);
+        });
+        assert_eq!(e.covered, disc);
+        assert!(e.metrics.coverage > 0.5 && e.metrics.coverage < 1.0);
     }
 
     #[test]

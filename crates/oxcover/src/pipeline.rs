@@ -30,7 +30,7 @@ use oxcover_planners::{
 use serde::Serialize;
 
 use crate::error::{Error, Result};
-use crate::metrics::{Evaluation, coverage_of, evaluate_problem};
+use crate::metrics::{Evaluation, coverage_of, covered_fraction, evaluate_covered};
 use crate::output::write_files;
 use crate::path::{cells_to_points, to_csv};
 use crate::render::{Scene, render_bytes};
@@ -451,6 +451,8 @@ struct RegionPlan {
     raw: Vec<Point>,
     /// `raw`, then the boundary pass.
     points: Vec<Point>,
+    /// The cells `raw` covers, where the boundary pass worked them out.
+    raw_covered: Option<Grid<bool>>,
     boundary: Option<BoundaryRoute>,
     /// The plannable cell the region's path ends in.
     end: Cell,
@@ -495,7 +497,10 @@ fn plan_region(
         .or_else(|| cells.last().copied())
         .unwrap_or(problem.start_cell());
     let mut points = raw.clone();
-    let boundary = if request.boundary_pass {
+    // What the plan covers: found once, for the boundary pass (both its
+    // routes) and the report's coverage before it.
+    let raw_covered = request.boundary_pass.then(|| problem.covered_by(&raw));
+    let boundary = if let Some(covered) = &raw_covered {
         // The pass starts from `end`'s centre; a metre plan may stop elsewhere
         // in that cell, so go to the centre first (a move inside one cell).
         let off_centre = raw.last() != Some(&frame.cell_center(end));
@@ -528,8 +533,8 @@ fn plan_region(
             // Independent: found in parallel (each works out what `raw`
             // leaves uncovered).
             let (tour, pass) = rayon::join(
-                || problem.boundary_tour_to(&raw, end, exit),
-                || problem.boundary_pass(&raw, end),
+                || problem.boundary_tour_to_covered(covered.clone(), end, exit),
+                || problem.boundary_pass_covered(covered.clone(), end),
             );
             let (tour, pass) = (tour?, pass?);
             let (a, b) = (appended(&tour, true), appended(&pass, false));
@@ -553,7 +558,7 @@ fn plan_region(
                 (tour, ta, a.1)
             }
         } else {
-            let pass = problem.boundary_pass(&raw, end)?;
+            let pass = problem.boundary_pass_covered(covered.clone(), end)?;
             let (pts, extra) = appended(&pass, false);
             let mut whole = points.clone();
             whole.extend(pts);
@@ -576,6 +581,7 @@ fn plan_region(
         cells,
         raw,
         points,
+        raw_covered,
         boundary,
         end,
     })
@@ -599,18 +605,29 @@ fn plan_whole(
 ) -> Result<PlanOutcome> {
     let region = plan_region(problem, request, start_prefix(problem), None, None)?;
     let boundary_length_m = polyline_length(&region.points) - polyline_length(&region.raw);
-    let (points, _) = if request.rooms {
+    let (points, _, covered) = if request.rooms {
         tighten_plan(problem, None, region.points, Vec::new())
     } else {
-        (region.points, Vec::new())
+        (region.points, Vec::new(), None)
     };
+    // The final path's cells, if known: from the tightening's check, or
+    // the plan's own where the path is the plan (nothing appended, moved).
+    let covered = covered.or_else(|| {
+        (points == region.raw)
+            .then(|| region.raw_covered.clone())
+            .flatten()
+    });
     let plan_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let known = KnownCoverage {
+        raws: region.raw_covered,
+        path: covered,
+    };
     finish(
         problem,
         request,
         points,
         region.cells,
-        &[region.raw],
+        (&[region.raw], known),
         region.boundary,
         boundary_length_m,
         Vec::new(),
@@ -685,14 +702,20 @@ fn plan_rooms(
         }
         here = region.end;
     }
-    let (points, stretches) = tighten_plan(problem, Some(units), points, stretches);
+    let (points, stretches, covered) = tighten_plan(problem, Some(units), points, stretches);
     let plan_ms = t0.elapsed().as_secs_f64() * 1e3;
+    // Each room's own coverage is on its room's grid: the map's is found
+    // afresh.
+    let known = KnownCoverage {
+        raws: None,
+        path: covered,
+    };
     finish(
         problem,
         request,
         points,
         cells,
-        &raws,
+        (&raws, known),
         boundary,
         boundary_length_m,
         stretches,
@@ -713,7 +736,7 @@ fn tighten_plan(
     units: Option<&RoomUnits>,
     points: Vec<Point>,
     stretches: Vec<RoomStretch>,
-) -> (Vec<Point>, Vec<RoomStretch>) {
+) -> (Vec<Point>, Vec<RoomStretch>, Option<Grid<bool>>) {
     let mut of_vertex = vec![0u32; points.len()];
     for s in &stretches {
         for z in &mut of_vertex[s.points.clone()] {
@@ -723,17 +746,13 @@ fn tighten_plan(
     let zones = units.map(|u| (&u.labels, of_vertex.as_slice()));
     let (tight, kept) = problem.tighten_within(&points, 0, zones);
     if tight == points {
-        return (points, stretches);
+        return (points, stretches, None);
     }
+    let reached = problem.covered_by(&tight);
     let tool = problem.robot().tool_radius;
-    if loses_coverage(
-        problem.frame(),
-        &problem.cells().coverable,
-        tool,
-        &points,
-        &tight,
-    ) {
-        return (points, stretches);
+    let (frame, coverable) = (problem.frame(), &problem.cells().coverable);
+    if loses_coverage(frame, coverable, tool, &points, &reached) {
+        return (points, stretches, None);
     }
     let at = |i: usize| kept.partition_point(|&k| k < i);
     let stretches = stretches
@@ -743,27 +762,37 @@ fn tighten_plan(
             points: at(s.points.start)..at(s.points.end),
         })
         .collect();
-    (tight, stretches)
+    (tight, stretches, Some(reached))
 }
 
-/// Whether the path `after` leaves a coverable cell uncovered that the
-/// path `before` covered (a tool of `tool` metres, the metrics' own
-/// coverage). `before`'s cells are only worked out where `after` misses
-/// a coverable cell: a complete plan costs one coverage test, not two.
+/// Whether a path that covers the cells `reached` leaves a coverable cell
+/// uncovered that the path `before` covered (a tool of `tool` metres, the
+/// metrics' own coverage, [`covered_cells`]). `before`'s cells are only
+/// worked out where `reached` misses a coverable cell: a complete plan
+/// costs one coverage test, not two.
 fn loses_coverage(
     frame: &MapFrame,
     coverable: &Grid<bool>,
     tool: f64,
     before: &[Point],
-    after: &[Point],
+    reached: &Grid<bool>,
 ) -> bool {
-    let reached = covered_cells(frame, after, tool);
     let missed: Vec<Cell> = coverable.true_cells().filter(|&c| !reached[c]).collect();
     if missed.is_empty() {
         return false;
     }
     let was = covered_cells(frame, before, tool);
     missed.into_iter().any(|c| was[c])
+}
+
+/// Coverage a plan has worked out on the way, each `None` where it has not
+/// (then [`finish`] finds it).
+struct KnownCoverage {
+    /// The cells all the planners' paths cover before the boundary pass,
+    /// on the map's grid.
+    raws: Option<Grid<bool>>,
+    /// The cells the final path covers.
+    path: Option<Grid<bool>>,
 }
 
 /// Scores a finished plan.
@@ -773,15 +802,28 @@ fn finish(
     request: &PlanRequest,
     points: Vec<Point>,
     cells: Vec<Cell>,
-    raws: &[Vec<Point>],
+    (raws, known): (&[Vec<Point>], KnownCoverage),
     boundary: Option<BoundaryRoute>,
     boundary_length_m: f64,
     room_stretches: Vec<RoomStretch>,
     plan_ms: f64,
 ) -> Result<PlanOutcome> {
     let frame = problem.frame();
-    let coverage_without_boundary_pass = coverage_of(frame, problem.cells(), raws);
-    let evaluation = evaluate_problem(frame, problem.cells().clone(), &points, &request.time);
+    // The two coverages, where not known yet, side by side.
+    let (coverage_without_boundary_pass, covered) = rayon::join(
+        || match &known.raws {
+            Some(g) => covered_fraction(problem.cells(), g),
+            None => coverage_of(frame, problem.cells(), raws),
+        },
+        || known.path.unwrap_or_else(|| problem.covered_by(&points)),
+    );
+    let evaluation = evaluate_covered(
+        frame,
+        problem.cells().clone(),
+        &points,
+        covered,
+        &request.time,
+    );
     Ok(PlanOutcome {
         points,
         cells,
@@ -993,6 +1035,15 @@ mod tests {
         let coverable = Grid::new(6, 1, true);
         let along = |x0: f64, x1: f64| vec![Point::new(x0, 0.5), Point::new(x1, 0.5)];
         let whole = along(0.5, 5.5);
+        let loses_coverage = |frame, coverable, tool, before: &[Point], after: &[Point]| {
+            loses_coverage(
+                frame,
+                coverable,
+                tool,
+                before,
+                &covered_cells(frame, after, tool),
+            )
+        };
         // Nothing lost: the same cells, or a path that covers them all.
         assert!(!loses_coverage(frame, &coverable, 0.5, &whole, &whole));
         assert!(!loses_coverage(
