@@ -39,6 +39,16 @@ pub fn cell_of<T>(grid: &Grid<T>, p: GridPoint) -> Option<Cell> {
 #[must_use]
 #[inline]
 pub fn segment_distance(a: GridPoint, b: GridPoint, m: GridPoint) -> f64 {
+    // Not `hypot`: this is a hot path of the metre planners and grid
+    // coordinates are far from overflow.
+    segment_distance_sq(a, b, m).sqrt()
+}
+
+/// The square of [`segment_distance`] (its square root is exactly
+/// [`segment_distance`]).
+#[must_use]
+#[inline]
+pub fn segment_distance_sq(a: GridPoint, b: GridPoint, m: GridPoint) -> f64 {
     let (dx, dy) = (b.x - a.x, b.y - a.y);
     let len2 = dx * dx + dy * dy;
     let t = if len2 > 0.0 {
@@ -47,9 +57,7 @@ pub fn segment_distance(a: GridPoint, b: GridPoint, m: GridPoint) -> f64 {
         0.0
     };
     let (ex, ey) = (a.x + t * dx - m.x, a.y + t * dy - m.y);
-    // Not `hypot`: this is a hot path of the metre planners and grid
-    // coordinates are far from overflow.
-    (ex * ex + ey * ey).sqrt()
+    ex * ex + ey * ey
 }
 
 /// Calls `f(cell, t_enter, t_exit)` for every cell the segment `a → b`

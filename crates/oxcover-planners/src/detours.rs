@@ -37,7 +37,9 @@
 //! within its search radius. `O(missed · (segments near · candidates))`.
 
 use oxcover_grid::math::{fast_ceil, fast_floor};
-use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear, segment_distance};
+use oxcover_grid::traverse::{
+    GridPoint, cell_center, cell_of, segment_clear, segment_distance, segment_distance_sq,
+};
 use oxcover_grid::{Cell, Grid, Vector};
 
 use crate::time::TimeModel;
@@ -256,91 +258,138 @@ fn sample_reaches(a: GridPoint, b: GridPoint, q: GridPoint, r: f64) -> bool {
 
 /// Calls `f` once for every cell of a `w × h` grid whose centre one of the
 /// contract's samples of the segment `a → b` reaches within `r`
-/// ([`sample_reaches`]).
+/// ([`sample_reaches`]), with the cell's row-major index (row by row; in
+/// a row, the cells tested exactly first, then those surely reached).
 fn for_stroke_cells(
     a: GridPoint,
     b: GridPoint,
     r: f64,
     w: usize,
     h: usize,
-    mut f: impl FnMut(Cell),
+    mut f: impl FnMut(usize, Cell),
 ) {
-    stroke_until(
-        a,
-        b,
-        r,
-        (w, h),
-        |_| true,
-        |c| {
-            f(c);
-            false
-        },
-    );
+    for span in stroke_spans(a, b, r, (w, h)) {
+        let base = span.row * w;
+        let cols = (span.first..span.sure.start).chain(span.sure.end..=span.last);
+        for col in cols {
+            let c = Cell::new(span.row, col);
+            if stroke_reaches(a, b, r, c) {
+                f(base + col, c);
+            }
+        }
+        for col in span.sure {
+            let c = Cell::new(span.row, col);
+            debug_assert!(segment_distance(a, b, cell_center(c)) <= r - SAMPLE_GAP);
+            f(base + col, c);
+        }
+    }
 }
 
-/// [`for_stroke_cells`] over the cells `want` accepts (asked before any
-/// geometry), stopping at the first cell for which `stop` returns `true`;
-/// returns whether one did. Row by row over the capsule round the segment
-/// (its discs at the ends and the band between), so that no cell outside
-/// it is looked at.
+/// [`for_stroke_cells`] over the cells `want` accepts (given the cell's
+/// row-major index in the `w × h` grid; asked before any geometry),
+/// stopping at the first cell for which `stop` (given the index and the
+/// cell) returns `true`; returns whether one did.
 fn stroke_until(
     a: GridPoint,
     b: GridPoint,
     r: f64,
     (w, h): (usize, usize),
-    want: impl Fn(Cell) -> bool,
-    mut stop: impl FnMut(Cell) -> bool,
+    want: impl Fn(usize) -> bool,
+    mut stop: impl FnMut(usize, Cell) -> bool,
 ) -> bool {
-    // A hair wider than `r`: the exact tests below decide.
-    let rr = r + 1e-7;
-    // Centres within this of the segment are reached by a sample whatever
-    // the exact test says: an interval per row, not a test per cell
-    // ([`SURE_MARGIN`] keeps the interval's own rounding on the safe side).
-    let sure = r - SAMPLE_GAP - SURE_MARGIN;
-    let row0 = fast_ceil(a.y.min(b.y) - rr - 0.5).max(0.0) as usize;
-    let row1 = fast_floor(a.y.max(b.y) + rr - 0.5);
-    if row1 < 0.0 {
-        return false;
-    }
-    let row1 = (row1 as usize).min(h.saturating_sub(1));
-    for row in row0..=row1 {
-        let y = row as f64 + 0.5;
-        let Some((x0, x1)) = capsule_span(a, b, rr, y) else {
-            continue;
-        };
-        let c0 = fast_ceil(x0 - 0.5).max(0.0) as usize;
-        let c1 = fast_floor(x1 - 0.5);
-        if c1 < 0.0 {
-            continue;
-        }
-        let c1 = (c1 as usize).min(w.saturating_sub(1));
-        // The columns whose centres lie within `sure` (none when s0 > s1).
-        let (s0, s1) = match (sure > 0.0).then(|| capsule_span(a, b, sure, y)).flatten() {
-            Some((s0, s1)) => (fast_ceil(s0 - 0.5), fast_floor(s1 - 0.5)),
-            None => (1.0, 0.0),
-        };
-        for col in c0..=c1 {
-            let c = Cell::new(row, col);
-            if !want(c) {
+    for span in stroke_spans(a, b, r, (w, h)) {
+        let base = span.row * w;
+        for col in span.first..=span.last {
+            if !want(base + col) {
                 continue;
             }
-            let x = col as f64;
-            let reached = if s0 <= x && x <= s1 {
-                debug_assert!(segment_distance(a, b, cell_center(c)) <= r - SAMPLE_GAP);
-                true
-            } else {
-                // Well within reach of the segment, a sample reaches too;
-                // beyond it, none does; between, the samples decide.
-                let q = cell_center(c);
-                let gap = segment_distance(a, b, q);
-                gap <= r - SAMPLE_GAP || (gap <= r && sample_reaches(a, b, q, r))
-            };
-            if reached && stop(c) {
+            let c = Cell::new(span.row, col);
+            let sure = span.sure.contains(&col);
+            debug_assert!(!sure || segment_distance(a, b, cell_center(c)) <= r - SAMPLE_GAP);
+            let reached = sure || stroke_reaches(a, b, r, c);
+            if reached && stop(base + col, c) {
                 return true;
             }
         }
     }
     false
+}
+
+/// The cells of one row that a stroke may reach ([`stroke_spans`]).
+struct StrokeSpan {
+    row: usize,
+    /// The first and last columns whose centres may be reached.
+    first: usize,
+    last: usize,
+    /// The columns whose centres are surely reached (within the sure
+    /// reach of the segment): a range inside `first..=last`, empty at its
+    /// end when there are none.
+    sure: std::ops::Range<usize>,
+}
+
+/// Row by row, the cells of a `w × h` grid within the capsule round the
+/// segment `a → b` of radius `r` (its discs at the ends and the band
+/// between, a hair wider), so that no cell outside it is looked at; each
+/// with the columns a sample surely reaches, an interval per row rather
+/// than a test per cell ([`SURE_MARGIN`] keeps the interval's own
+/// rounding on the safe side).
+fn stroke_spans(
+    a: GridPoint,
+    b: GridPoint,
+    r: f64,
+    (w, h): (usize, usize),
+) -> impl Iterator<Item = StrokeSpan> {
+    // A hair wider than `r`: the exact tests decide.
+    let rr = r + 1e-7;
+    // Centres within this of the segment are reached by a sample whatever
+    // the exact test says.
+    let sure = r - SAMPLE_GAP - SURE_MARGIN;
+    let row0 = fast_ceil(a.y.min(b.y) - rr - 0.5).max(0.0) as usize;
+    let row1 = fast_floor(a.y.max(b.y) + rr - 0.5);
+    // No row when `row1` is negative.
+    let rows = if row1 < 0.0 {
+        1..1
+    } else {
+        row0..(row1 as usize).min(h.saturating_sub(1)) + 1
+    };
+    rows.filter_map(move |row| {
+        let y = row as f64 + 0.5;
+        let (x0, x1) = capsule_span(a, b, rr, y)?;
+        let first = fast_ceil(x0 - 0.5).max(0.0) as usize;
+        let last = fast_floor(x1 - 0.5);
+        if last < 0.0 {
+            return None;
+        }
+        let last = (last as usize).min(w.saturating_sub(1));
+        // The columns whose centres lie within `sure`.
+        let (s0, s1) = match (sure > 0.0).then(|| capsule_span(a, b, sure, y)).flatten() {
+            Some((s0, s1)) => (fast_ceil(s0 - 0.5), fast_floor(s1 - 0.5)),
+            None => (1.0, 0.0),
+        };
+        let (lo, hi) = (s0.max(first as f64), s1.min(last as f64));
+        let sure = if lo <= hi {
+            lo as usize..hi as usize + 1
+        } else {
+            last + 1..last + 1
+        };
+        Some(StrokeSpan {
+            row,
+            first,
+            last,
+            sure,
+        })
+    })
+}
+
+/// Whether a sample of `a → b` reaches the centre of `c` within `r`, for a
+/// cell outside the sure interval of [`stroke_spans`]: well within reach
+/// of the segment, a sample reaches too; beyond it, none does; between,
+/// the samples decide. (Inside the sure interval it holds too: checked in
+/// debug builds.)
+fn stroke_reaches(a: GridPoint, b: GridPoint, r: f64, c: Cell) -> bool {
+    let q = cell_center(c);
+    let gap = segment_distance(a, b, q);
+    gap <= r - SAMPLE_GAP || (gap <= r && sample_reaches(a, b, q, r))
 }
 
 /// How far inside the sure reach of [`stroke_until`] its per-row interval
@@ -414,14 +463,16 @@ pub(crate) fn reach_counts(points: &[GridPoint], d: &Detours<'_>) -> Grid<u16> {
 /// Adds one to the count of every cell a sample of `a → b` reaches.
 fn count_stroke(count: &mut Grid<u16>, a: GridPoint, b: GridPoint, r: f64) {
     let (w, h) = (count.width(), count.height());
-    for_stroke_cells(a, b, r, w, h, |c| count[c] = count[c].saturating_add(1));
+    let data = count.as_mut_slice();
+    for_stroke_cells(a, b, r, w, h, |i, _| data[i] = data[i].saturating_add(1));
 }
 
 /// Takes one from the count of every cell a sample of `a → b` reaches (what
 /// [`count_stroke`] added).
 fn uncount_stroke(count: &mut Grid<u16>, a: GridPoint, b: GridPoint, r: f64) {
     let (w, h) = (count.width(), count.height());
-    for_stroke_cells(a, b, r, w, h, |c| count[c] = count[c].saturating_sub(1));
+    let data = count.as_mut_slice();
+    for_stroke_cells(a, b, r, w, h, |i, _| data[i] = data[i].saturating_sub(1));
 }
 
 /// `points` with detours inserted until every coverable cell is within
@@ -680,6 +731,9 @@ fn try_replace(
     // The coverable cells only `v`'s two pieces reach: the same for every
     // move, found once (at the first move that saves time and is clear).
     let mut lone: Option<Vec<GridPoint>> = None;
+    // The lone cell the last move left out of reach: tried first for the
+    // next (the moves are alike; most that lose a cell lose that one).
+    let mut culprit = 0;
     let mut timed = [(0.0, None); MOVES];
     let mut saving = 0;
     for m in moves {
@@ -709,7 +763,8 @@ fn try_replace(
             continue;
         }
         let lone = lone.get_or_insert_with(|| reached_only_by(d, count, pu, &[pv], px));
-        if loses_any(lone, pu, mid, px, d.reach) {
+        if let Some(k) = lost_cell(lone, culprit, pu, mid, px, d.reach) {
+            culprit = k;
             continue;
         }
         for (a, b) in pieces(pu, &[pv], px) {
@@ -774,17 +829,30 @@ fn bounds(pts: &[GridPoint]) -> (GridPoint, GridPoint) {
 /// Half the largest gap between the contract's samples (cells).
 const SAMPLE_GAP: f64 = 0.125 + 1e-9;
 
-/// Whether a piece of `u → mid… → x` passes within `r` of `q`.
+/// Whether a piece of `u → mid… → x` surely passes within `r` of `q`: its
+/// squared distance is at most `r²` less a relative hair ([`NEAR_HAIR`]),
+/// so that no rounding claims a point beyond `r` (no square root: this
+/// runs for every cell a tightening move might lose). A point within `r`
+/// by less than the hair may be answered `false`: callers test those
+/// exactly.
 fn near_pieces(u: GridPoint, mid: &[GridPoint], x: GridPoint, q: GridPoint, r: f64) -> bool {
+    if r <= 0.0 {
+        return false;
+    }
+    let r2 = r * r * (1.0 - NEAR_HAIR);
     let mut prev = u;
     for &p in mid.iter().chain(std::iter::once(&x)) {
-        if segment_distance(prev, p, q) <= r {
+        if segment_distance_sq(prev, p, q) <= r2 {
             return true;
         }
         prev = p;
     }
     false
 }
+
+/// Relative margin of [`near_pieces`]: far beyond the rounding of a
+/// squared distance, far within the ⅛-cell margin its callers keep.
+const NEAR_HAIR: f64 = 1e-12;
 
 /// How many pieces of `u → mid… → x` have a sample within `r` of `q`.
 fn pieces_reaching(u: GridPoint, mid: &[GridPoint], x: GridPoint, q: GridPoint, r: f64) -> u16 {
@@ -819,14 +887,18 @@ fn reached_only_by(
     x: GridPoint,
 ) -> Vec<GridPoint> {
     let size = (count.width(), count.height());
-    let at_risk = |c: Cell| d.coverable[c] && count[c] <= old.len() as u16 + 1;
+    assert_eq!(size, (d.coverable.width(), d.coverable.height()));
+    // By row-major index (the grids are of one size).
+    let (coverable, counts) = (d.coverable.as_slice(), count.as_slice());
+    let most = old.len() as u16 + 1;
+    let at_risk = |i: usize| coverable[i] && counts[i] <= most;
     let mut out = Vec::new();
     // Every cell the old pieces may reach (within `reach + fragile`) that
     // no other piece surely reaches (within `reach`: `count` counts those).
     for (a, b) in pieces(u, old, x) {
-        stroke_until(a, b, d.reach + d.fragile, size, at_risk, |c| {
+        stroke_until(a, b, d.reach + d.fragile, size, at_risk, |i, c| {
             let q = cell_center(c);
-            if pieces_reaching(u, old, x, q, d.reach) == count[c] {
+            if pieces_reaching(u, old, x, q, d.reach) == counts[i] {
                 out.push(q);
             }
             false
@@ -835,14 +907,26 @@ fn reached_only_by(
     out
 }
 
-/// Whether the pieces `u → new… → x` leave any of the cells centred at
-/// `lone` out of reach.
-fn loses_any(lone: &[GridPoint], u: GridPoint, new: &[GridPoint], x: GridPoint, r: f64) -> bool {
-    lone.iter().any(|&q| {
+/// The index of a cell of those centred at `lone` that the pieces
+/// `u → new… → x` leave out of reach, if any; the cell at `first` is
+/// tried first (whether one is lost does not depend on the order).
+fn lost_cell(
+    lone: &[GridPoint],
+    first: usize,
+    u: GridPoint,
+    new: &[GridPoint],
+    x: GridPoint,
+    r: f64,
+) -> Option<usize> {
+    let lost = |q: GridPoint| {
         // Well within reach of a new piece: one of its samples (at most ¼
         // cell apart) reaches it too.
         !near_pieces(u, new, x, q, r - SAMPLE_GAP) && pieces_reaching(u, new, x, q, r) == 0
-    })
+    };
+    if lone.get(first).is_some_and(|&q| lost(q)) {
+        return Some(first);
+    }
+    lone.iter().position(|&q| lost(q))
 }
 
 /// The new vertices of a detour (at most three).
@@ -1314,12 +1398,44 @@ mod tests {
             let a = GridPoint::new(ax, ay);
             let (w, h) = (20usize, 16usize);
             let mut seen = Grid::new(w, h, 0u8);
-            for_stroke_cells(a, b, r, w, h, |c| seen[c] += 1);
+            for_stroke_cells(a, b, r, w, h, |i, c| {
+                assert_eq!(i, c.row * w + c.col);
+                seen[c] += 1;
+            });
             for c in seen.cells() {
                 let q = cell_center(c);
                 let gap = segment_distance(a, b, q);
                 let reached = gap <= r - SAMPLE_GAP || (gap <= r && sample_reaches(a, b, q, r));
                 prop_assert_eq!(seen[c], u8::from(reached), "{:?}", c);
+            }
+        }
+
+        /// `near_pieces` never claims a point beyond `r` of every piece,
+        /// and finds every point clearly within; a lost cell is found
+        /// whichever cell is tried first.
+        #[test]
+        fn near_pieces_is_sound_and_lost_cells_do_not_depend_on_the_order(
+            u in (0.0..20.0f64, 0.0..20.0f64), m in (0.0..20.0f64, 0.0..20.0f64),
+            x in (0.0..20.0f64, 0.0..20.0f64), r in 0.5..6.0f64, first in 0usize..400,
+        ) {
+            let (u, m, x) = (
+                GridPoint::new(u.0, u.1),
+                GridPoint::new(m.0, m.1),
+                GridPoint::new(x.0, x.1),
+            );
+            let cells: Vec<GridPoint> = (0..400)
+                .map(|i| cell_center(Cell::new(i / 20, i % 20)))
+                .collect();
+            for &q in &cells {
+                let d = segment_distance(u, m, q).min(segment_distance(m, x, q));
+                let near = near_pieces(u, &[m], x, q, r);
+                prop_assert!(!near || d <= r, "{:?} at {}", q, d);
+                prop_assert!(near || d > r * (1.0 - 1e-9), "{:?} at {}", q, d);
+            }
+            let lost = lost_cell(&cells, first, u, &[m], x, r);
+            prop_assert_eq!(lost.is_some(), lost_cell(&cells, 0, u, &[m], x, r).is_some());
+            if let Some(k) = lost {
+                prop_assert_eq!(pieces_reaching(u, &[m], x, cells[k], r), 0);
             }
         }
 
