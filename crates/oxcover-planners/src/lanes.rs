@@ -262,7 +262,6 @@ fn plan_lanes(
     // ends its lanes far from the exit, costs there).
     scored.sort_by(|a, b| a.0.total_cmp(&b.0));
     let exit = input.exit.filter(|&c| plannable.is_set(c)).map(cell_center);
-    let mut region = Region::new(plannable, tool);
     let cheapest = scored.first().map_or(0.0, |b| b.0);
     // A small plan can afford to build more angles than the model's best
     // few: then every one of them is ordered and built, whatever the model
@@ -273,13 +272,13 @@ fn plan_lanes(
     } else {
         (ANGLES_ORDERED, ANGLES_BUILT, NEAR_TIE)
     };
-    let near_ties = scored
+    let near_ties: Vec<(f64, Vec<Chain>, f64)> = scored
         .into_iter()
         .take(ordered_count)
         .enumerate()
         .filter(|(i, (cost, _, _))| *i == 0 || *cost <= tie * cheapest)
-        .map(|(_, c)| c);
-    let mut ordered: Vec<(f64, Vec<Chain>, Tour)> = Vec::new();
+        .map(|(_, c)| c)
+        .collect();
     // Where one angle does not suit every part of the region (an arm of a
     // corridor hatched across), a chain's area is re-hatched at a wall
     // direction where the model finds that faster ([`Hatch`]). A fixed
@@ -294,7 +293,10 @@ fn plan_lanes(
     // The first two candidates: the wall directions (the grid's axes for
     // a tool narrower than a cell).
     let wall_angles: Vec<f64> = candidates.iter().take(2).copied().collect();
-    for (cost, chains, step) in near_ties {
+    // Each near tie ordered on its own (in parallel, each with its own
+    // transit search; in the order of `near_ties` whatever the thread
+    // count).
+    let order_angle = |region: &mut Region<'_>, (cost, chains, step): (f64, Vec<Chain>, f64)| {
         let (chains, saving) = if angle_deg.is_none() {
             hatch.rehatch(chains, step, &wall_angles)
         } else {
@@ -303,9 +305,13 @@ fn plan_lanes(
         let mut nodes: Vec<Node> = loops.iter().map(Node::Loop).collect();
         nodes.extend(chains.iter().map(Node::Chain));
         let ends = (cell_center(start), exit);
-        let (order, transit) = order_nodes(&nodes, ends, &mut region, &cell_time);
-        ordered.push((cost - saving + transit, chains, order));
-    }
+        let (order, transit) = order_nodes(&nodes, ends, region, &cell_time);
+        (cost - saving + transit, chains, order)
+    };
+    let mut ordered: Vec<(f64, Vec<Chain>, Tour)> = near_ties
+        .into_par_iter()
+        .map_init(|| Region::new(plannable, tool), order_angle)
+        .collect();
     ordered.sort_by(|a, b| a.0.total_cmp(&b.0));
     let loop_tolerance = (tool / 2.0).clamp(LOOP_TOLERANCE.0, LOOP_TOLERANCE.1);
     // What the straightened loops and the lanes' ends pass just out of
