@@ -87,11 +87,21 @@ pub fn covered_cells(frame: &MapFrame, points: &[Point], tool_radius: f64) -> Gr
 /// samples of a segment are collinear and evenly spaced, so the nearest is
 /// among them), each sample computed exactly as the sampler computes it.
 pub fn mark_covered(frame: &MapFrame, points: &[Point], tool_radius: f64, mask: &mut Grid<bool>) {
-    let step = frame.resolution() / 4.0;
     let Some(first) = points.first() else {
         return;
     };
     mark_disc(frame, first, tool_radius, mask);
+    mark_segments(frame, points, tool_radius, mask);
+}
+
+/// [`mark_covered`] without the first waypoint's own sample: the cells the
+/// samples of `points`' segments cover (each segment's samples after its
+/// start). A path split at a waypoint `k` is marked as `points[..=k]` with
+/// [`mark_covered`] and `points[k..]` with this: together exactly the
+/// cells of the whole (the sample ending a segment is not always the
+/// waypoint itself, to the last bit).
+pub fn mark_segments(frame: &MapFrame, points: &[Point], tool_radius: f64, mask: &mut Grid<bool>) {
+    let step = frame.resolution() / 4.0;
     for w in points.windows(2) {
         let (a, b) = (w[0], w[1]);
         let n = sample_parts(a, b, step);
@@ -222,6 +232,22 @@ mod tests {
             mark_covered(&frame, &points, radius, &mut fast);
             mark_covered_reference(&frame, &points, radius, &mut slow);
             prop_assert_eq!(fast, slow);
+        }
+    }
+
+    #[test]
+    fn a_path_split_at_a_waypoint_marks_the_same_cells() {
+        let frame = MapFrame::new(50, 40, 0.05, Point::new(0.1, -0.2)).with_yaw(0.7);
+        let pts: Vec<Point> = [(0.3, 0.1), (1.9, 0.4), (0.4, 1.3), (2.2, 1.5), (1.0, 0.2)]
+            .map(|(x, y)| Point::new(x, y))
+            .to_vec();
+        let mut whole = Grid::new(50, 40, false);
+        mark_covered(&frame, &pts, 0.11, &mut whole);
+        for k in 0..pts.len() {
+            let mut split = Grid::new(50, 40, false);
+            mark_covered(&frame, &pts[..=k], 0.11, &mut split);
+            mark_segments(&frame, &pts[k..], 0.11, &mut split);
+            assert_eq!(split, whole, "split at {k}");
         }
     }
 

@@ -32,7 +32,7 @@
 //! at almost every anchor) and keeps the faster.
 
 use oxcover_distance::{Wavefront, cidt};
-use oxcover_grid::footprint::{covered_cells, mark_covered, mark_disc};
+use oxcover_grid::footprint::{covered_cells, mark_covered, mark_disc, mark_segments};
 use oxcover_grid::{Cell, Coverability, Grid, MapFrame, Point, TOLERANCE_CELLS};
 
 use crate::error::{Error, Result};
@@ -89,11 +89,32 @@ pub fn boundary_pass_covered(
 }
 
 /// The cells a plan's polyline `points` covers for `problem`'s tool, as the
-/// metrics find them.
+/// metrics find them ([`covered_cells`]). A long path is marked in two
+/// halves side by side ([`mark_segments`]): the same cells.
 #[must_use]
 pub fn covered_by(frame: &MapFrame, problem: &Coverability, points: &[Point]) -> Grid<bool> {
-    covered_cells(frame, points, problem.robot.tool_radius)
+    let tool = problem.robot.tool_radius;
+    if points.len() < SPLIT_WAYPOINTS {
+        return covered_cells(frame, points, tool);
+    }
+    let k = points.len() / 2;
+    let (mut a, b) = rayon::join(
+        || covered_cells(frame, &points[..=k], tool),
+        || {
+            let mut b = Grid::new(frame.width(), frame.height(), false);
+            mark_segments(frame, &points[k..], tool, &mut b);
+            b
+        },
+    );
+    for (x, &y) in a.as_mut_slice().iter_mut().zip(b.as_slice()) {
+        *x |= y;
+    }
+    a
 }
+
+/// Paths of at least this many waypoints are marked in two halves by
+/// [`covered_by`].
+const SPLIT_WAYPOINTS: usize = 1_000;
 
 /// The same cells covered by a better tour: the anchors are ordered by an
 /// open tour over their straight-line distances (nearest neighbour, then
