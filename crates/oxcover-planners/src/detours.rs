@@ -352,9 +352,11 @@ fn stroke_spans(
     } else {
         row0..(row1 as usize).min(h.saturating_sub(1)) + 1
     };
+    let capsule = Capsule::new(a, b);
     rows.filter_map(move |row| {
         let y = row as f64 + 0.5;
-        let (x0, x1) = capsule_span(a, b, rr, y)?;
+        let [span, sure_span] = capsule.spans(y, rr, (sure > 0.0).then_some(sure));
+        let (x0, x1) = span?;
         let first = fast_ceil(x0 - 0.5).max(0.0) as usize;
         let last = fast_floor(x1 - 0.5);
         if last < 0.0 {
@@ -362,7 +364,7 @@ fn stroke_spans(
         }
         let last = (last as usize).min(w.saturating_sub(1));
         // The columns whose centres lie within `sure`.
-        let (s0, s1) = match (sure > 0.0).then(|| capsule_span(a, b, sure, y)).flatten() {
+        let (s0, s1) = match sure_span {
             Some((s0, s1)) => (fast_ceil(s0 - 0.5), fast_floor(s1 - 0.5)),
             None => (1.0, 0.0),
         };
@@ -397,9 +399,100 @@ fn stroke_reaches(a: GridPoint, b: GridPoint, r: f64, c: Cell) -> bool {
 /// roots, far within the margin of [`sample_reaches`]' own quick test.
 const SURE_MARGIN: f64 = 1e-6;
 
+/// The capsules round a segment `a → b` ([`Capsule::spans`]), with the
+/// terms that do not depend on the row or the radius worked out once.
+struct Capsule {
+    a: GridPoint,
+    b: GridPoint,
+    ab: Vector,
+    /// The unit normal (zero for a point).
+    n: Vector,
+    /// Whether the segment has a length.
+    long: bool,
+    /// Whether it is horizontal (then `m` is not used).
+    flat: bool,
+    /// `n.y / ab.y`: the band's parameter `t` falls by `m` per unit of `u`.
+    m: f64,
+}
+
+impl Capsule {
+    fn new(a: GridPoint, b: GridPoint) -> Self {
+        let ab = b - a;
+        let len = ab.norm();
+        let long = len > 0.0;
+        let n = if long {
+            Vector::new(-ab.y, ab.x) / len
+        } else {
+            Vector::zeros()
+        };
+        let flat = ab.y.abs() < 1e-12;
+        Self {
+            a,
+            b,
+            ab,
+            n,
+            long,
+            flat,
+            m: n.y / ab.y,
+        }
+    }
+
+    /// The x extents of the points of the line at height `y` within `r`
+    /// and within `sure` (if given) of the segment (each capsule is
+    /// convex: one interval, the hull of its end discs' and its band's).
+    fn spans(&self, y: f64, r: f64, sure: Option<f64>) -> [Option<(f64, f64)>; 2] {
+        let (a, b, ab, n, m) = (self.a, self.b, self.ab, self.n, self.m);
+        let (da, db) = (y - a.y, y - b.y);
+        // Band points a + t·ab + u·n, t in [0, 1], |u| <= r: on the line
+        // where t(u) = (y - a.y - u·n.y) / ab.y = k - m·u, so 0 <= t <= 1
+        // bounds u to `band` (whatever r; `None`: no u).
+        let k = da / ab.y;
+        let band = if !self.long || self.flat {
+            None
+        } else if m.abs() < 1e-12 {
+            (0.0..=1.0)
+                .contains(&k)
+                .then_some((f64::NEG_INFINITY, f64::INFINITY))
+        } else {
+            let (ua, ub) = (k / m, (k - 1.0) / m);
+            Some((ua.min(ub), ua.max(ub)))
+        };
+        let span = |r: f64| {
+            let mut lo = f64::INFINITY;
+            let mut hi = f64::NEG_INFINITY;
+            for (p, dy) in [(a, da), (b, db)] {
+                if dy.abs() <= r {
+                    let s = (r * r - dy * dy).sqrt();
+                    lo = lo.min(p.x - s);
+                    hi = hi.max(p.x + s);
+                }
+            }
+            if self.long && self.flat {
+                // Horizontal: the line meets the band where |y - a.y| <= r.
+                if da.abs() <= r {
+                    lo = lo.min(a.x.min(b.x));
+                    hi = hi.max(a.x.max(b.x));
+                }
+            } else if let Some((b0, b1)) = band {
+                let (u0, u1) = ((-r).max(b0), r.min(b1));
+                if u0 <= u1 {
+                    for u in [u0, u1] {
+                        let t = k - m * u;
+                        let x = a.x + t * ab.x + u * n.x;
+                        lo = lo.min(x);
+                        hi = hi.max(x);
+                    }
+                }
+            }
+            (lo <= hi).then_some((lo, hi))
+        };
+        [span(r), sure.and_then(span)]
+    }
+}
+
 /// The x extent of the points of the line at height `y` within `r` of the
-/// segment `a → b` (the capsule is convex: one interval, the hull of its
-/// end discs' and its band's).
+/// segment `a → b` (the reference for [`Capsule::spans`], for tests).
+#[cfg(test)]
 fn capsule_span(a: GridPoint, b: GridPoint, r: f64, y: f64) -> Option<(f64, f64)> {
     let mut lo = f64::INFINITY;
     let mut hi = f64::NEG_INFINITY;
@@ -414,20 +507,15 @@ fn capsule_span(a: GridPoint, b: GridPoint, r: f64, y: f64) -> Option<(f64, f64)
     let ab = b - a;
     let len = ab.norm();
     if len > 0.0 {
-        // Band points a + t·ab + u·n, t in [0, 1], |u| <= r, n the unit
-        // normal: on the line where t(u) = (y - a.y - u·n.y) / ab.y.
         let n = Vector::new(-ab.y, ab.x) / len;
         let (mut u0, mut u1) = (-r, r);
         if ab.y.abs() < 1e-12 {
-            // Horizontal: the line meets the band where |y - a.y| <= r.
             if (y - a.y).abs() <= r {
                 lo = lo.min(a.x.min(b.x));
                 hi = hi.max(a.x.max(b.x));
             }
         } else {
-            // 0 <= (y - a.y - u·n.y) / ab.y <= 1, as bounds on u.
             let (k, m) = ((y - a.y) / ab.y, n.y / ab.y);
-            // t(u) = k - m·u.
             if m.abs() < 1e-12 {
                 if !(0.0..=1.0).contains(&k) {
                     u1 = u0 - 1.0;
@@ -1436,6 +1524,32 @@ mod tests {
             prop_assert_eq!(lost.is_some(), lost_cell(&cells, 0, u, &[m], x, r).is_some());
             if let Some(k) = lost {
                 prop_assert_eq!(pieces_reaching(u, &[m], x, cells[k], r), 0);
+            }
+        }
+
+        /// The capsule's spans are, to the bit, those worked out one
+        /// radius and row at a time.
+        #[test]
+        fn capsule_spans_match_the_one_at_a_time_span(
+            ax in -2.0..22.0f64, ay in -2.0..18.0f64, bx in -2.0..22.0f64, by in -2.0..18.0f64,
+            r in 0.3..6.0f64, gap in 0.0..0.5f64, kind in 0usize..4,
+        ) {
+            // Some segments horizontal, vertical, nearly so, or a point.
+            let b = match kind {
+                0 => GridPoint::new(bx, ay),
+                1 => GridPoint::new(ax, by),
+                2 => GridPoint::new(ax, ay),
+                _ => GridPoint::new(bx, by),
+            };
+            let a = GridPoint::new(ax, ay);
+            let capsule = Capsule::new(a, b);
+            for row in -3..22 {
+                let y = f64::from(row) + 0.5;
+                let sure = r - gap;
+                let [span, inner] = capsule.spans(y, r, Some(sure));
+                prop_assert_eq!(span, capsule_span(a, b, r, y));
+                prop_assert_eq!(inner, capsule_span(a, b, sure, y));
+                prop_assert_eq!(capsule.spans(y, r, None)[1], None);
             }
         }
 
