@@ -149,6 +149,64 @@ pub fn segment_clear(mask: &Grid<bool>, a: GridPoint, b: GridPoint) -> bool {
     })
 }
 
+/// Whether every cell that meets the triangle `tri` widened by `margin`
+/// cells (each of its points moved by up to `margin` along each axis) is
+/// inside `mask` and set. Then [`segment_clear`] holds for every segment
+/// between two points of the triangle, or of the triangle widened by a
+/// little less than `margin` (the traversal's own rounding is far smaller
+/// than any sensible `margin`): one test for many segments.
+#[must_use]
+pub fn triangle_clear(mask: &Grid<bool>, tri: [GridPoint; 3], margin: f64) -> bool {
+    if !tri.iter().all(|p| p.x.is_finite() && p.y.is_finite()) || margin.is_nan() || margin < 0.0 {
+        return false;
+    }
+    let (w, h) = (mask.width() as f64, mask.height() as f64);
+    let y_lo = tri.iter().map(|p| p.y).fold(f64::INFINITY, f64::min) - margin;
+    let y_hi = tri.iter().map(|p| p.y).fold(f64::NEG_INFINITY, f64::max) + margin;
+    let (r0, r1) = (fast_floor(y_lo), fast_floor(y_hi));
+    if r0 < 0.0 || r1 >= h {
+        return false;
+    }
+    let edges = [(tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])];
+    for row in r0 as usize..=r1 as usize {
+        // The triangle's points whose height lies in the row's band
+        // (widened): their x extent, from each edge clipped to the band.
+        let (b0, b1) = (row as f64 - margin, row as f64 + 1.0 + margin);
+        let mut lo = f64::INFINITY;
+        let mut hi = f64::NEG_INFINITY;
+        for (p, q) in edges {
+            let (e0, e1) = (p.y.min(q.y), p.y.max(q.y));
+            if e1 < b0 || e0 > b1 {
+                continue;
+            }
+            if q.y == p.y {
+                lo = lo.min(p.x.min(q.x));
+                hi = hi.max(p.x.max(q.x));
+                continue;
+            }
+            for y in [e0.max(b0), e1.min(b1)] {
+                let x = p.x + (y - p.y) / (q.y - p.y) * (q.x - p.x);
+                lo = lo.min(x);
+                hi = hi.max(x);
+            }
+        }
+        if lo > hi {
+            continue;
+        }
+        let (c0, c1) = (fast_floor(lo - margin), fast_floor(hi + margin));
+        if c0 < 0.0 || c1 >= w {
+            return false;
+        }
+        if !mask.row(row)[c0 as usize..=c1 as usize]
+            .iter()
+            .all(|&set| set)
+        {
+            return false;
+        }
+    }
+    true
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -317,6 +375,52 @@ mod tests {
         ) {
             let c = |v: u32| f64::from(v) + 0.5;
             assert_samples_reported(Point::new(c(ax), c(ay)), Point::new(c(bx), c(by)), 60);
+        }
+
+        /// A clear triangle makes every segment between its points (and
+        /// points a hair outside) clear; a blocked cell inside it, or the
+        /// triangle leaving the grid, makes it not clear.
+        #[test]
+        fn clear_triangles_hold_clear_segments(
+            tri in proptest::array::uniform3((0.0..24.0f64, 0.0..24.0f64)),
+            walls in proptest::collection::vec((0usize..24, 0usize..24), 0..12),
+            weights in proptest::collection::vec((0.0..1.0f64, 0.0..1.0f64), 8),
+            nudge in proptest::array::uniform2(-1e-4..1e-4f64),
+        ) {
+            let tri = tri.map(|(x, y)| Point::new(x, y));
+            let mut mask = Grid::new(24, 24, true);
+            for &(r, c) in &walls {
+                mask[Cell::new(r, c)] = false;
+            }
+            // Points of the triangle (barycentric), nudged off it.
+            let inside: Vec<Point> = weights
+                .iter()
+                .map(|&(u, v)| {
+                    let (u, v) = if u + v > 1.0 { (1.0 - u, 1.0 - v) } else { (u, v) };
+                    let p = tri[0] + (tri[1] - tri[0]) * u + (tri[2] - tri[0]) * v;
+                    Point::new(p.x + nudge[0], p.y + nudge[1])
+                })
+                .chain(tri)
+                .collect();
+            let clear = triangle_clear(&mask, tri, 1e-3);
+            if clear {
+                for &p in &inside {
+                    for &q in &inside {
+                        proptest::prop_assert!(segment_clear(&mask, p, q), "{:?} {:?}", p, q);
+                    }
+                }
+            }
+            // Not clear where a blocked cell holds a vertex.
+            let blocked_vertex = tri.iter().any(|p| !mask[Cell::new(p.y as usize, p.x as usize)]);
+            proptest::prop_assert!(!(clear && blocked_vertex));
+            // Nor where it leaves the grid.
+            let off = [tri[0], tri[1], Point::new(-0.5, tri[2].y)];
+            proptest::prop_assert!(!triangle_clear(&Grid::new(24, 24, true), off, 1e-3));
+            // With no wall, every triangle in the grid (and off its edge by
+            // more than the margin) is clear.
+            let open = Grid::new(24, 24, true);
+            let inner = tri.map(|p| Point::new(p.x.clamp(0.01, 23.99), p.y.clamp(0.01, 23.99)));
+            proptest::prop_assert!(triangle_clear(&open, inner, 1e-3));
         }
     }
 }
