@@ -149,39 +149,64 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
             }
         }
     }
-    // Regions of the free space minus the cuts.
+    // Regions of the free space minus the cuts, numbered by their first
+    // cell in row-major order (filled by index: this reads every cell).
     let mut labels = Grid::new(w, h, 0u32);
-    let mut sizes: Vec<usize> = Vec::new();
-    for s in free.true_cells() {
-        if cut[s] || labels[s] != 0 {
-            continue;
-        }
-        sizes.push(0);
-        let id = sizes.len() as u32;
-        labels[s] = id;
-        let mut queue = VecDeque::from([s]);
-        while let Some(c) = queue.pop_front() {
-            sizes[id as usize - 1] += 1;
-            for (_, n) in free.neighbours4(c) {
-                if free[n] && !cut[n] && labels[n] == 0 {
-                    labels[n] = id;
-                    queue.push_back(n);
+    let regions = {
+        let open: Vec<bool> = free
+            .as_slice()
+            .iter()
+            .zip(cut.as_slice())
+            .map(|(&f, &c)| f && !c)
+            .collect();
+        let ids = labels.as_mut_slice();
+        let mut count = 0u32;
+        let mut stack = Vec::new();
+        for s in 0..open.len() {
+            if !open[s] || ids[s] != 0 {
+                continue;
+            }
+            count += 1;
+            ids[s] = count;
+            stack.push(s);
+            while let Some(i) = stack.pop() {
+                let col = i % w;
+                let west = (col > 0).then(|| i - 1);
+                let east = (col + 1 < w).then_some(i + 1);
+                let north = i.checked_sub(w);
+                let south = Some(i + w).filter(|&n| n < open.len());
+                for n in [north, west, east, south].into_iter().flatten() {
+                    if open[n] && ids[n] == 0 {
+                        ids[n] = count;
+                        stack.push(n);
+                    }
                 }
             }
         }
-    }
+        count
+    };
     // Grow back over the cuts, then merge small regions.
     // Only labelled cells beside an unlabelled free one label anything (the
     // others, taken first in the same order, would find nothing to grow
     // into): the same rooms as from every labelled cell.
-    let open = |c: Cell| free.neighbours4(c).any(|(_, n)| free[n] && labels[n] == 0);
-    let mut queue: VecDeque<Cell> = labels
-        .cells()
-        .filter(|&c| labels[c] != 0 && open(c))
-        .collect();
+    let mut queue: VecDeque<Cell> = {
+        let (ids, free) = (labels.as_slice(), free.as_slice());
+        let unlabelled = |n: usize| free[n] && ids[n] == 0;
+        (0..ids.len())
+            .filter(|&i| {
+                let col = i % w;
+                ids[i] != 0
+                    && (i.checked_sub(w).is_some_and(unlabelled)
+                        || (col > 0 && unlabelled(i - 1))
+                        || (col + 1 < w && unlabelled(i + 1))
+                        || (i + w < ids.len() && unlabelled(i + w)))
+            })
+            .map(|i| Cell::new(i / w, i % w))
+            .collect()
+    };
     grow(free, &mut labels, &mut queue);
     // Regions made of cut cells only.
-    label_the_rest(free, &mut labels, sizes.len() as u32 + 1);
+    label_the_rest(free, &mut labels, regions + 1);
     merge_small_regions(&mut labels, min_cells);
     // Relabel: rooms of at least the smallest area first, then the smaller
     // free regions (isolated specks no door joins), each in row-major order
