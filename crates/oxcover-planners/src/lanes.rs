@@ -838,14 +838,24 @@ fn chains_at(
         }
         first as usize..last as usize + 1
     };
+    let (w, h) = (lane_mask.width() as f64, lane_mask.height() as f64);
+    let (mask, width) = (lane_mask.as_slice(), lane_mask.width());
     for j in 0..lines {
         let v = nmin + step * j as f64 + EDGE_NUDGE;
         let mut runs = Vec::new();
         let mut open: Option<f64> = None;
         let mut last_in = u0;
+        // `at(u, v)` and `cell_of` on the lane mask, term for term, with
+        // the line's own terms once per line.
+        let (vx, vy) = (v * n.x, v * n.y);
         for s in in_box(v) {
             let u = u0 + s as f64 * 0.25;
-            let inside = cell_of(lane_mask, at(u, v)).is_some_and(|c| lane_mask[c]);
+            let (x, y) = (u * d.x + vx, u * d.y + vy);
+            let inside = x >= 0.0
+                && y >= 0.0
+                && x < w
+                && y < h
+                && mask[fast_floor(y) as usize * width + fast_floor(x) as usize];
             match (inside, open) {
                 (true, None) => open = Some(u),
                 (false, Some(o)) => {
