@@ -35,6 +35,12 @@
 //! Cost: the path's segments are kept in square buckets (each registered
 //! along its length); a missed cell looks at the segments of the buckets
 //! within its search radius. `O(missed · (segments near · candidates))`.
+//! A segment's reach is found row by row over its capsule, the cells it
+//! surely reaches as one interval per row and only the rest tested
+//! against its samples. [`tighten`] tests a vertex's moves for clearance
+//! at once where every cell of the triangle of the vertex and its
+//! neighbours is plannable ([`triangle_clear`]: every move's point lies in
+//! it), and traverses each move's pieces only elsewhere.
 
 use oxcover_grid::math::{fast_ceil, fast_floor};
 use oxcover_grid::traverse::{
