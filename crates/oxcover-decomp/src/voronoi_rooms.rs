@@ -37,7 +37,7 @@
 use std::collections::VecDeque;
 
 use oxcover_grid::edt::boundary_distance_sq4;
-use oxcover_grid::{Cell, Grid};
+use oxcover_grid::{Cell, Grid, components4};
 
 use crate::rooms::{RoomParams, Rooms, doors, grow, label_the_rest, merge_small_regions};
 
@@ -149,42 +149,12 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
             }
         }
     }
-    // Regions of the free space minus the cuts, numbered by their first
-    // cell in row-major order (filled by index: this reads every cell).
-    let mut labels = Grid::new(w, h, 0u32);
-    let regions = {
-        let open: Vec<bool> = free
-            .as_slice()
-            .iter()
-            .zip(cut.as_slice())
-            .map(|(&f, &c)| f && !c)
-            .collect();
-        let ids = labels.as_mut_slice();
-        let mut count = 0u32;
-        let mut stack = Vec::new();
-        for s in 0..open.len() {
-            if !open[s] || ids[s] != 0 {
-                continue;
-            }
-            count += 1;
-            ids[s] = count;
-            stack.push(s);
-            while let Some(i) = stack.pop() {
-                let col = i % w;
-                let west = (col > 0).then(|| i - 1);
-                let east = (col + 1 < w).then_some(i + 1);
-                let north = i.checked_sub(w);
-                let south = Some(i + w).filter(|&n| n < open.len());
-                for n in [north, west, east, south].into_iter().flatten() {
-                    if open[n] && ids[n] == 0 {
-                        ids[n] = count;
-                        stack.push(n);
-                    }
-                }
-            }
-        }
-        count
-    };
+    // Regions of the free space minus the cuts (numbered by their first
+    // cell in row-major order).
+    let open = Grid::from_fn(w, h, |c| free[c] && !cut[c]);
+    let regions = components4(&open);
+    let count = regions.count() as u32;
+    let mut labels = regions.labels;
     // Grow back over the cuts, then merge small regions.
     // Only labelled cells beside an unlabelled free one label anything (the
     // others, taken first in the same order, would find nothing to grow
@@ -206,7 +176,7 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     };
     grow(free, &mut labels, &mut queue);
     // Regions made of cut cells only.
-    label_the_rest(free, &mut labels, regions + 1);
+    label_the_rest(free, &mut labels, count + 1);
     merge_small_regions(&mut labels, min_cells);
     // Relabel: rooms of at least the smallest area first, then the smaller
     // free regions (isolated specks no door joins), each in row-major order

@@ -34,25 +34,34 @@ impl Components {
     }
 }
 
-/// Labels the 4-connected components of the `true` cells.
+/// Labels the 4-connected components of the `true` cells, numbered from 1
+/// in row-major order of their first cells (filled by index: this reads
+/// every cell).
 #[must_use]
 pub fn components4(mask: &Grid<bool>) -> Components {
-    let mut labels = Grid::new(mask.width(), mask.height(), 0u32);
+    let (w, set) = (mask.width(), mask.as_slice());
+    let mut labels = Grid::new(w, mask.height(), 0u32);
+    let ids = labels.as_mut_slice();
     let mut sizes = Vec::new();
     let mut stack = Vec::new();
-    for start in mask.cells() {
-        if !mask[start] || labels[start] != 0 {
+    for start in 0..set.len() {
+        if !set[start] || ids[start] != 0 {
             continue;
         }
         let label = sizes.len() as u32 + 1;
-        labels[start] = label;
+        ids[start] = label;
         stack.push(start);
         let mut size = 0;
-        while let Some(c) = stack.pop() {
+        while let Some(i) = stack.pop() {
             size += 1;
-            for (_, n) in mask.neighbours4(c) {
-                if mask[n] && labels[n] == 0 {
-                    labels[n] = label;
+            let col = i % w;
+            let west = (col > 0).then(|| i - 1);
+            let east = (col + 1 < w).then_some(i + 1);
+            let north = i.checked_sub(w);
+            let south = Some(i + w).filter(|&n| n < set.len());
+            for n in [north, west, east, south].into_iter().flatten() {
+                if set[n] && ids[n] == 0 {
+                    ids[n] = label;
                     stack.push(n);
                 }
             }
