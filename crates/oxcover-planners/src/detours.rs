@@ -40,7 +40,10 @@
 //! against its samples. [`tighten`] tests a vertex's moves for clearance
 //! at once where every cell of the triangle of the vertex and its
 //! neighbours is plannable ([`triangle_clear`]: every move's point lies in
-//! it), and traverses each move's pieces only elsewhere.
+//! it), and traverses each move's pieces only elsewhere. A long pass is
+//! split into bands of rows tightened in parallel, each changing only the
+//! vertices whose change stays within its rows, the rest afterwards one
+//! by one (a fixed number of bands: the same path on any thread count).
 
 use oxcover_grid::math::{fast_ceil, fast_floor};
 use oxcover_grid::traverse::{
@@ -48,6 +51,7 @@ use oxcover_grid::traverse::{
     triangle_clear,
 };
 use oxcover_grid::{Cell, Grid, Vector};
+use rayon::prelude::*;
 
 use crate::time::TimeModel;
 
@@ -91,6 +95,7 @@ pub(crate) fn metric_reach(tool_cells: f64) -> (f64, f64) {
 }
 
 /// A polyline as a linked list, so vertices can be inserted in place.
+#[derive(Clone)]
 struct Linked {
     pts: Vec<GridPoint>,
     next: Vec<usize>,
@@ -549,25 +554,59 @@ fn capsule_span(a: GridPoint, b: GridPoint, r: f64, y: f64) -> Option<(f64, f64)
 /// within `d.reach` of its centre).
 pub(crate) fn reach_counts(points: &[GridPoint], d: &Detours<'_>) -> Grid<u16> {
     let mut count = Grid::new(d.plannable.width(), d.plannable.height(), 0);
+    let mut counts = Counts::whole(&mut count);
     for s in points.windows(2) {
-        count_stroke(&mut count, s[0], s[1], d.reach);
+        counts.add_stroke(s[0], s[1], d.reach);
     }
     count
 }
 
-/// Adds one to the count of every cell a sample of `a → b` reaches.
-fn count_stroke(count: &mut Grid<u16>, a: GridPoint, b: GridPoint, r: f64) {
-    let (w, h) = (count.width(), count.height());
-    let data = count.as_mut_slice();
-    for_stroke_cells(a, b, r, w, h, |i, _| data[i] = data[i].saturating_add(1));
+/// A band of whole rows of a reach count grid: all of it, or the rows one
+/// strip of a parallel [`tighten_from`] round may change. Indexed by the
+/// whole grid's row-major index; a cell outside the band is a bug (the
+/// index panics).
+struct Counts<'a> {
+    /// The band's counts, row-major.
+    data: &'a mut [u16],
+    /// The whole grid's row-major index of the band's first cell.
+    offset: usize,
+    /// The whole grid's width and height.
+    size: (usize, usize),
 }
 
-/// Takes one from the count of every cell a sample of `a → b` reaches (what
-/// [`count_stroke`] added).
-fn uncount_stroke(count: &mut Grid<u16>, a: GridPoint, b: GridPoint, r: f64) {
-    let (w, h) = (count.width(), count.height());
-    let data = count.as_mut_slice();
-    for_stroke_cells(a, b, r, w, h, |i, _| data[i] = data[i].saturating_sub(1));
+impl<'a> Counts<'a> {
+    fn whole(grid: &'a mut Grid<u16>) -> Self {
+        let size = (grid.width(), grid.height());
+        Self {
+            data: grid.as_mut_slice(),
+            offset: 0,
+            size,
+        }
+    }
+
+    /// The count of the cell at the whole grid's row-major index `i`.
+    fn get(&self, i: usize) -> u16 {
+        self.data[i - self.offset]
+    }
+
+    /// Adds one to the count of every cell a sample of `a → b` reaches.
+    fn add_stroke(&mut self, a: GridPoint, b: GridPoint, r: f64) {
+        let (w, h) = self.size;
+        let (data, offset) = (&mut *self.data, self.offset);
+        for_stroke_cells(a, b, r, w, h, |i, _| {
+            data[i - offset] = data[i - offset].saturating_add(1);
+        });
+    }
+
+    /// Takes one from the count of every cell a sample of `a → b` reaches
+    /// (what [`Counts::add_stroke`] added).
+    fn sub_stroke(&mut self, a: GridPoint, b: GridPoint, r: f64) {
+        let (w, h) = self.size;
+        let (data, offset) = (&mut *self.data, self.offset);
+        for_stroke_cells(a, b, r, w, h, |i, _| {
+            data[i - offset] = data[i - offset].saturating_sub(1);
+        });
+    }
 }
 
 /// `points` with detours inserted until every coverable cell is within
@@ -740,49 +779,183 @@ pub(crate) fn tighten_from(
     // before (the first at all); the fixed ones never.
     let mut dirty: Vec<bool> = (0..points.len()).map(|i| i >= first).collect();
     for _round in 0..ROUNDS {
-        let mut next_dirty = vec![false; points.len()];
-        let mut changed = false;
+        // The pass's vertices in path order (the first and last stay; a
+        // change at a vertex leaves the ones after it in place).
+        let mut todo = Vec::new();
         let mut v = path.next[0];
         while v != END && path.next[v] != END {
-            // The vertex removed, or moved towards the line of its
-            // neighbours (replacing two at once was measured: no gain).
-            let (u, x) = (path.prev[v], path.next[v]);
-            if dirty[v] && try_replace(&mut path, &mut count, d, v, zone) {
-                changes += 1;
-                changed = true;
-                for k in [u, v, x] {
-                    next_dirty[k] = k >= first;
-                }
+            if dirty[v] {
+                todo.push(v);
             }
-            v = x;
+            v = path.next[v];
         }
-        if !changed {
+        let changed = tighten_round(&mut path, &mut count, d, &todo, zone);
+        if changed.is_empty() {
             break;
+        }
+        changes += changed.len();
+        let mut next_dirty = vec![false; points.len()];
+        for c in changed {
+            for k in [c.before, c.vertex, c.after] {
+                next_dirty[k] = k >= first;
+            }
         }
         dirty = next_dirty;
     }
     (path.points(), path.ids(), changes)
 }
 
+/// Vertices a pass must look at before it is split into [`STRIPS`].
+const PARALLEL_PASS: usize = 512;
+
+/// Bands of rows a large pass is split into, one task each: a fixed
+/// number, so that the path does not depend on the thread count.
+const STRIPS: usize = 4;
+
+/// One pass of [`tighten_from`] over the vertices `todo` (in path order):
+/// each vertex replaced as [`try_replace`] finds best. Returns the
+/// changes.
+///
+/// A pass of [`PARALLEL_PASS`] vertices or more is split into [`STRIPS`]
+/// bands of rows, each holding about as many of the vertices: every band
+/// tries, in parallel and in path order, its vertices whose change can
+/// touch only its own rows (the box round the vertex and its neighbours,
+/// widened by the reach they count with); the rest are then tried one by
+/// one, in path order. Two such changes in different bands share no cell
+/// and no vertex, so each band's is decided exactly as alone; only the
+/// time a band judges a change by may use a neighbour's neighbour as it
+/// was at the start of the pass (moved meanwhile by another band).
+fn tighten_round(
+    path: &mut Linked,
+    count: &mut Grid<u16>,
+    d: &Detours<'_>,
+    todo: &[usize],
+    zone: Option<&Zone<'_>>,
+) -> Vec<Change> {
+    if todo.len() < PARALLEL_PASS {
+        return one_by_one(
+            path,
+            &mut Counts::whole(count),
+            d,
+            todo.iter().copied(),
+            zone,
+        );
+    }
+    let (w, h) = (count.width(), count.height());
+    let row = |p: GridPoint| (fast_floor(p.y).max(0.0) as usize).min(h - 1);
+    // Band edges at the quantiles of the vertices' rows.
+    let mut rows: Vec<usize> = todo.iter().map(|&v| row(path.pts[v])).collect();
+    rows.sort_unstable();
+    let mut edges = vec![0];
+    edges.extend((1..STRIPS).map(|k| rows[k * rows.len() / STRIPS]));
+    edges.push(h);
+    // The band of a row: band `k` holds rows `edges[k]..edges[k + 1]`.
+    let band_of = |r: usize| edges[1..].partition_point(|&e| e <= r);
+    // The rows a change at a vertex may touch: the box round it and its
+    // neighbours, widened by the reach a change is counted and judged
+    // with, and a cell for the rounding of the rows' ends.
+    let margin = d.reach + d.fragile + 1.0;
+    let mut bands = Vec::with_capacity(STRIPS);
+    let mut rest = count.as_mut_slice();
+    for k in 0..STRIPS {
+        let (band, tail) = rest.split_at_mut((edges[k + 1] - edges[k]) * w);
+        rest = tail;
+        bands.push(Counts {
+            data: band,
+            offset: edges[k] * w,
+            size: (w, h),
+        });
+    }
+    let start: &Linked = path;
+    // Each band's changes and the positions in `todo` of the vertices it
+    // leaves to the one-by-one pass.
+    let done: Vec<(Vec<Change>, Vec<usize>)> = bands
+        .into_par_iter()
+        .enumerate()
+        .map(|(k, mut counts)| {
+            let mut own = start.clone();
+            let mut log = Vec::new();
+            let mut left = Vec::new();
+            for (i, &v) in todo.iter().enumerate() {
+                if band_of(row(start.pts[v])) != k {
+                    continue;
+                }
+                let (u, x) = (own.prev[v], own.next[v]);
+                let (rows, _) = cell_box(&[own.pts[u], own.pts[v], own.pts[x]], margin, (w, h));
+                if rows.start < edges[k] || rows.end > edges[k + 1] {
+                    left.push(i);
+                } else if let Some(c) = try_replace(&mut own, &mut counts, d, v, zone) {
+                    log.push(c);
+                }
+            }
+            (log, left)
+        })
+        .collect();
+    let mut changed = Vec::new();
+    let mut left = Vec::new();
+    for (log, band_left) in done {
+        for c in log {
+            match c.to {
+                None => {
+                    path.next[c.before] = c.after;
+                    path.prev[c.after] = c.before;
+                }
+                Some(q) => path.pts[c.vertex] = q,
+            }
+            changed.push(c);
+        }
+        left.extend(band_left);
+    }
+    left.sort_unstable();
+    let rest = left.into_iter().map(|i| todo[i]);
+    changed.extend(one_by_one(path, &mut Counts::whole(count), d, rest, zone));
+    changed
+}
+
+/// [`try_replace`] at each of `vertices` in turn; the changes.
+fn one_by_one(
+    path: &mut Linked,
+    counts: &mut Counts<'_>,
+    d: &Detours<'_>,
+    vertices: impl Iterator<Item = usize>,
+    zone: Option<&Zone<'_>>,
+) -> Vec<Change> {
+    // Each vertex removed, or moved towards the line of its neighbours
+    // (replacing two at once was measured: no gain).
+    vertices
+        .filter_map(|v| try_replace(path, counts, d, v, zone))
+        .collect()
+}
+
+/// A change [`try_replace`] made at `vertex`, between `before` and
+/// `after`: removed (`to` is `None`) or moved to `to`.
+#[derive(Clone, Copy, Debug)]
+struct Change {
+    vertex: usize,
+    before: usize,
+    after: usize,
+    to: Option<GridPoint>,
+}
+
 /// Replaces node `v` by the fastest of: nothing, a point on the way from
 /// it to the line of its neighbours ([`RELOCATIONS`]), or a point along
 /// one of its pieces ([`SLIDES`]), that is clear, saves time and uncovers
 /// nothing (the fastest, not the first: measured on the ipa plans, 0.406
-/// → 0.415 time efficiency, rooms off). Returns whether it did.
+/// → 0.415 time efficiency, rooms off). Returns the change, if it made one.
 fn try_replace(
     path: &mut Linked,
-    count: &mut Grid<u16>,
+    count: &mut Counts<'_>,
     d: &Detours<'_>,
     v: usize,
     zone: Option<&Zone<'_>>,
-) -> bool {
+) -> Option<Change> {
     let (u, x) = (path.prev[v], path.next[v]);
     if u == END || x == END {
-        return false;
+        return None;
     }
     let (pu, pv, px) = (path.pts[u], path.pts[v], path.pts[x]);
     if box_cells(&[pu, pv, px], d.reach) > REMOVAL_BOX {
-        return false;
+        return None;
     }
     let (before, after) = (path.prev[u], path.next[x]);
     // Seconds of the stretch from `v`'s neighbours' neighbours, with `mid`
@@ -873,10 +1046,10 @@ fn try_replace(
             continue;
         }
         for (a, b) in pieces(pu, &[pv], px) {
-            uncount_stroke(count, a, b, d.reach);
+            count.sub_stroke(a, b, d.reach);
         }
         for (a, b) in pieces(pu, mid, px) {
-            count_stroke(count, a, b, d.reach);
+            count.add_stroke(a, b, d.reach);
         }
         match m {
             None => {
@@ -885,9 +1058,14 @@ fn try_replace(
             }
             Some(q) => path.pts[v] = q,
         }
-        return true;
+        return Some(Change {
+            vertex: v,
+            before: u,
+            after: x,
+            to: m,
+        });
     }
-    false
+    None
 }
 
 /// How far beyond the triangle of a vertex and its neighbours the cells
@@ -991,24 +1169,24 @@ fn pieces(u: GridPoint, mid: &[GridPoint], x: GridPoint) -> Vec<(GridPoint, Grid
 /// those pieces can leave out of reach).
 fn reached_only_by(
     d: &Detours<'_>,
-    count: &Grid<u16>,
+    count: &Counts<'_>,
     u: GridPoint,
     old: &[GridPoint],
     x: GridPoint,
 ) -> Vec<GridPoint> {
-    let size = (count.width(), count.height());
+    let size = count.size;
     assert_eq!(size, (d.coverable.width(), d.coverable.height()));
     // By row-major index (the grids are of one size).
-    let (coverable, counts) = (d.coverable.as_slice(), count.as_slice());
+    let coverable = d.coverable.as_slice();
     let most = old.len() as u16 + 1;
-    let at_risk = |i: usize| coverable[i] && counts[i] <= most;
+    let at_risk = |i: usize| coverable[i] && count.get(i) <= most;
     let mut out = Vec::new();
     // Every cell the old pieces may reach (within `reach + fragile`) that
     // no other piece surely reaches (within `reach`: `count` counts those).
     for (a, b) in pieces(u, old, x) {
         stroke_until(a, b, d.reach + d.fragile, size, at_risk, |i, c| {
             let q = cell_center(c);
-            if pieces_reaching(u, old, x, q, d.reach) == counts[i] {
+            if pieces_reaching(u, old, x, q, d.reach) == count.get(i) {
                 out.push(q);
             }
             false
@@ -1487,6 +1665,74 @@ mod tests {
         let before = polyline_time(&path, &d.time);
         let after = polyline_time(&out, &d.time);
         assert!(after < 0.5 * before, "{before} -> {after}: {out:?}");
+    }
+
+    /// Cells of a `w × h` grid within `r` of one of the contract's samples
+    /// of `pts` (as [`sampled`], looking only near each sample).
+    fn sampled_near(w: usize, h: usize, pts: &[GridPoint], r: f64) -> Grid<bool> {
+        let mut g = Grid::new(w, h, false);
+        for_each_sample(pts, 0.25, |p| {
+            let rows =
+                ((p.y - r - 1.0).max(0.0) as usize)..((p.y + r + 1.0).max(0.0) as usize).min(h);
+            for row in rows {
+                let cols =
+                    ((p.x - r - 1.0).max(0.0) as usize)..((p.x + r + 1.0).max(0.0) as usize).min(w);
+                for col in cols {
+                    let c = Cell::new(row, col);
+                    if (cell_center(c) - p).norm() <= r {
+                        g[c] = true;
+                    }
+                }
+            }
+        });
+        g
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 6, ..ProptestConfig::default() })]
+
+        /// A pass long enough to be split into bands of rows: the path is
+        /// the same whatever the thread count, every cell the path reached
+        /// is still reached, and it is faster.
+        #[test]
+        fn a_banded_pass_keeps_coverage_and_ignores_the_thread_count(
+            jitter in prop::collection::vec(-0.45..0.45f64, 64),
+        ) {
+            // An open room; a serpentine along every other row, a vertex
+            // at every cell, each jittered across its row.
+            let (w, h) = (40, 60);
+            let plannable = Grid::new(w, h, true);
+            let coverable = plannable.clone();
+            let mut path = Vec::new();
+            for (k, row) in (1..h - 1).step_by(2).enumerate() {
+                let cols: Vec<usize> = if k % 2 == 0 {
+                    (1..w - 1).collect()
+                } else {
+                    (1..w - 1).rev().collect()
+                };
+                for col in cols {
+                    let j = jitter[(row * 7 + col) % jitter.len()];
+                    path.push(GridPoint::new(col as f64 + 0.5, row as f64 + 0.5 + j));
+                }
+            }
+            prop_assert!(path.len() > PARALLEL_PASS + 2);
+            let d = reach_one(&plannable, &coverable, 2.0);
+            let on = |threads: usize| {
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .expect("pool")
+                    .install(|| tighten(&path, &d, reach_counts(&path, &d)))
+            };
+            let (out, n) = on(1);
+            prop_assert_eq!(&on(3).0, &out);
+            prop_assert!(n > 0);
+            let (before, after) = (sampled_near(w, h, &path, 1.0), sampled_near(w, h, &out, 1.0));
+            for c in before.true_cells() {
+                prop_assert!(after[c], "{:?} lost", c);
+            }
+            prop_assert!(polyline_time(&out, &d.time) < polyline_time(&path, &d.time));
+        }
     }
 
     proptest! {
