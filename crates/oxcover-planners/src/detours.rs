@@ -280,7 +280,7 @@ fn for_stroke_cells(
     h: usize,
     mut f: impl FnMut(usize, Cell),
 ) {
-    for span in stroke_spans(a, b, r, (w, h)) {
+    for span in stroke_spans(a, b, r, r, (w, h)) {
         let base = span.row * w;
         let cols = (span.first..span.sure.start).chain(span.sure.end..=span.last);
         for col in cols {
@@ -299,17 +299,18 @@ fn for_stroke_cells(
 
 /// [`for_stroke_cells`] over the cells `want` accepts (given the cell's
 /// row-major index in the `w × h` grid; asked before any geometry),
-/// stopping at the first cell for which `stop` (given the index and the
-/// cell) returns `true`; returns whether one did.
+/// stopping at the first cell for which `stop` (given the index, the cell
+/// and whether a sample surely reaches it within `inner`, at most `r`)
+/// returns `true`; returns whether one did.
 fn stroke_until(
     a: GridPoint,
     b: GridPoint,
-    r: f64,
+    (r, inner): (f64, f64),
     (w, h): (usize, usize),
     want: impl Fn(usize) -> bool,
-    mut stop: impl FnMut(usize, Cell) -> bool,
+    mut stop: impl FnMut(usize, Cell, bool) -> bool,
 ) -> bool {
-    for span in stroke_spans(a, b, r, (w, h)) {
+    for span in stroke_spans(a, b, r, inner, (w, h)) {
         let base = span.row * w;
         for col in span.first..=span.last {
             if !want(base + col) {
@@ -317,9 +318,9 @@ fn stroke_until(
             }
             let c = Cell::new(span.row, col);
             let sure = span.sure.contains(&col);
-            debug_assert!(!sure || segment_distance(a, b, cell_center(c)) <= r - SAMPLE_GAP);
+            debug_assert!(!sure || segment_distance(a, b, cell_center(c)) <= inner - SAMPLE_GAP);
             let reached = sure || stroke_reaches(a, b, r, c);
-            if reached && stop(base + col, c) {
+            if reached && stop(base + col, c, sure) {
                 return true;
             }
         }
@@ -342,20 +343,22 @@ struct StrokeSpan {
 /// Row by row, the cells of a `w × h` grid within the capsule round the
 /// segment `a → b` of radius `r` (its discs at the ends and the band
 /// between, a hair wider), so that no cell outside it is looked at; each
-/// with the columns a sample surely reaches, an interval per row rather
-/// than a test per cell ([`SURE_MARGIN`] keeps the interval's own
-/// rounding on the safe side).
+/// with the columns a sample surely reaches within `inner` (at most `r`),
+/// an interval per row rather than a test per cell ([`SURE_MARGIN`] keeps
+/// the interval's own rounding on the safe side).
 fn stroke_spans(
     a: GridPoint,
     b: GridPoint,
     r: f64,
+    inner: f64,
     (w, h): (usize, usize),
 ) -> impl Iterator<Item = StrokeSpan> {
+    debug_assert!(inner <= r);
     // A hair wider than `r`: the exact tests decide.
     let rr = r + 1e-7;
-    // Centres within this of the segment are reached by a sample whatever
-    // the exact test says.
-    let sure = r - SAMPLE_GAP - SURE_MARGIN;
+    // Centres within this of the segment are reached by a sample within
+    // `inner` whatever the exact test says.
+    let sure = inner - SAMPLE_GAP - SURE_MARGIN;
     let row0 = fast_ceil(a.y.min(b.y) - rr - 0.5).max(0.0) as usize;
     let row1 = fast_floor(a.y.max(b.y) + rr - 0.5);
     // No row when `row1` is negative.
@@ -1180,13 +1183,32 @@ fn reached_only_by(
     let coverable = d.coverable.as_slice();
     let most = old.len() as u16 + 1;
     let at_risk = |i: usize| coverable[i] && count.get(i) <= most;
+    let outer = d.reach + d.fragile;
+    let all = pieces(u, old, x);
+    let reaches = |(a, b): (GridPoint, GridPoint), q| u16::from(sample_reaches(a, b, q, d.reach));
     let mut out = Vec::new();
-    // Every cell the old pieces may reach (within `reach + fragile`) that
-    // no other piece surely reaches (within `reach`: `count` counts those).
-    for (a, b) in pieces(u, old, x) {
-        stroke_until(a, b, d.reach + d.fragile, size, at_risk, |i, c| {
+    // Every cell the old pieces may reach (within `outer`) that no other
+    // piece reaches (within `reach`: `count` counts those, the old pieces
+    // among them): each cell once, with the first piece that reaches it
+    // within `outer` (the earlier ones then reach it within neither).
+    for (j, &(a, b)) in all.iter().enumerate() {
+        stroke_until(a, b, (outer, d.reach), size, at_risk, |i, c, sure| {
+            if all[..j]
+                .iter()
+                .any(|&(p, q)| stroke_reaches(p, q, outer, c))
+            {
+                return false;
+            }
             let q = cell_center(c);
-            if pieces_reaching(u, old, x, q, d.reach) == count.get(i) {
+            let n = count.get(i);
+            let mut reached = if sure { 1 } else { reaches((a, b), q) };
+            for &later in &all[j + 1..] {
+                if reached > n {
+                    break;
+                }
+                reached += reaches(later, q);
+            }
+            if reached == n {
                 out.push(q);
             }
             false
