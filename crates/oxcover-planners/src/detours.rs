@@ -20,7 +20,7 @@
 //! missed cells. Cells no such detour reaches are left (the caller's
 //! boundary pass visits them).
 //!
-//! [`tighten`] then removes the vertices detours made unneeded, moves the
+//! [`tighten_from`] then removes the vertices detours made unneeded, moves the
 //! others towards the line of their neighbours or slides them along a
 //! piece: of the changes at a vertex that are clear, save time and
 //! uncover nothing, the one saving the most. Over a densely traced edge
@@ -37,7 +37,7 @@
 //! within its search radius. `O(missed · (segments near · candidates))`.
 //! A segment's reach is found row by row over its capsule, the cells it
 //! surely reaches as one interval per row and only the rest tested
-//! against its samples. [`tighten`] tests a vertex's moves for clearance
+//! against its samples. [`tighten_from`] tests a vertex's moves for clearance
 //! at once where every cell of the triangle of the vertex and its
 //! neighbours is plannable ([`triangle_clear`]: every move's point lies in
 //! it), and traverses each move's pieces only elsewhere. A long pass is
@@ -72,7 +72,7 @@ pub(crate) struct Detours<'a> {
     pub reach: f64,
     /// How much farther than `reach` a sample may still reach a cell as
     /// the metrics measure it (cells; 0 where the caller covers such cells
-    /// itself). [`tighten`] never leaves out a cell the pieces it replaces
+    /// itself). [`tighten_from`] never leaves out a cell the pieces it replaces
     /// reach within `reach + fragile`, unless another piece reaches it
     /// within `reach`: the two radii either side of the metrics' own keep
     /// rounding from deciding a cell's fate.
@@ -615,7 +615,7 @@ impl<'a> Counts<'a> {
 /// `points` with detours inserted until every coverable cell is within
 /// `reach` of the path or no clear detour within `search` reaches it
 /// without uncovering another. Returns the new path and, for each cell,
-/// how many of its segments reach it (for [`tighten`]).
+/// how many of its segments reach it (for [`tighten_from`]).
 pub(crate) fn insert_detours(points: &[GridPoint], d: &Detours<'_>) -> (Vec<GridPoint>, Grid<u16>) {
     let (w, h) = (d.plannable.width(), d.plannable.height());
     let mut count = reach_counts(points, d);
@@ -726,25 +726,6 @@ const MOVES: usize = 1 + RELOCATIONS.len() + 2 * SLIDES.len();
 /// corners of long lanes) are kept without a look.
 const REMOVAL_BOX: usize = 4_000;
 
-/// `points` tightened: each vertex is removed, moved towards the line of
-/// its neighbours ([`RELOCATIONS`]) or slid along one of its pieces
-/// ([`SLIDES`]), whichever saves the most estimated time while clear and
-/// leaving no coverable cell the path reached out of reach (the same
-/// sample-exact counts as [`insert_detours`]); [`ROUNDS`] passes.
-/// After detours, some straightened corners and staircase vertices are no
-/// longer needed and many are sharper than coverage requires. Returns the
-/// new path and the number of vertices removed or moved. `count` is how
-/// many segments of `points` reach each cell, as [`insert_detours`]
-/// returns it.
-pub(crate) fn tighten(
-    points: &[GridPoint],
-    d: &Detours<'_>,
-    count: Grid<u16>,
-) -> (Vec<GridPoint>, usize) {
-    let (points, _, changes) = tighten_from(points, d, count, 0, None);
-    (points, changes)
-}
-
 /// Where the vertices of a path may be moved: vertex `i` with a label
 /// `of_vertex[i]` other than 0 only to a point of a cell with that label
 /// in `labels` (the room it works in); removing it is always allowed.
@@ -762,50 +743,101 @@ impl Zone<'_> {
     }
 }
 
-/// [`tighten`] moving only the vertices from index `first` on (those
-/// before stay where they are, and still count for coverage), each within
-/// its `zone` if one is given. Also returns the index in `points` of each
-/// vertex kept, in order.
+/// `points` tightened: each vertex from index `first` on is removed,
+/// moved towards the line of its neighbours ([`RELOCATIONS`]) or slid
+/// along one of its pieces ([`SLIDES`]), whichever saves the most
+/// estimated time while clear, within its `zone` if one is given, and
+/// leaving no coverable cell the path reached out of reach (the same
+/// sample-exact counts as [`insert_detours`]); [`ROUNDS`] passes. The
+/// vertices before `first` stay where they are, and still count for
+/// coverage. After detours, some straightened corners and staircase
+/// vertices are no longer needed and many are sharper than coverage
+/// requires. `count` is how many segments of `points` reach each cell, as
+/// [`insert_detours`] or [`reach_counts`] returns it. Returns the new
+/// path, the index in `points` of each vertex kept (in order) and the
+/// number of vertices removed or moved.
 pub(crate) fn tighten_from(
     points: &[GridPoint],
     d: &Detours<'_>,
-    mut count: Grid<u16>,
+    count: Grid<u16>,
     first: usize,
     zone: Option<&Zone<'_>>,
 ) -> (Vec<GridPoint>, Vec<usize>, usize) {
-    if points.len() < 3 {
-        return (points.to_vec(), (0..points.len()).collect(), 0);
+    let mut t = Tightening::new(points, count, first);
+    while t.pass(d, zone) {}
+    t.finish()
+}
+
+/// A [`tighten_from`] in progress, pass by pass (so that a caller can
+/// look at the path between passes and stop early).
+pub(crate) struct Tightening {
+    path: Linked,
+    count: Grid<u16>,
+    /// Which vertices the next pass looks at: those next to a change of
+    /// the pass before (the first pass at all); the fixed ones never.
+    dirty: Vec<bool>,
+    first: usize,
+    passes: usize,
+    changes: usize,
+    /// Whether the last pass changed nothing (or the path is too short).
+    settled: bool,
+}
+
+impl Tightening {
+    /// `points` before any pass, with `count` as [`reach_counts`] finds it;
+    /// the vertices before `first` stay.
+    pub(crate) fn new(points: &[GridPoint], count: Grid<u16>, first: usize) -> Self {
+        Self {
+            path: Linked::new(points),
+            count,
+            dirty: (0..points.len()).map(|i| i >= first).collect(),
+            first,
+            passes: 0,
+            changes: 0,
+            settled: points.len() < 3,
+        }
     }
-    let mut path = Linked::new(points);
-    let mut changes = 0;
-    // Each pass looks only at the vertices next to a change of the pass
-    // before (the first at all); the fixed ones never.
-    let mut dirty: Vec<bool> = (0..points.len()).map(|i| i >= first).collect();
-    for _round in 0..ROUNDS {
+
+    /// Runs the next pass, if any is left ([`ROUNDS`] in all, fewer when
+    /// one changes nothing); returns whether it ran and changed anything.
+    pub(crate) fn pass(&mut self, d: &Detours<'_>, zone: Option<&Zone<'_>>) -> bool {
+        if self.settled || self.passes >= ROUNDS {
+            return false;
+        }
+        self.passes += 1;
+        let path = &mut self.path;
         // The pass's vertices in path order (the first and last stay; a
         // change at a vertex leaves the ones after it in place).
         let mut todo = Vec::new();
         let mut v = path.next[0];
         while v != END && path.next[v] != END {
-            if dirty[v] {
+            if self.dirty[v] {
                 todo.push(v);
             }
             v = path.next[v];
         }
-        let changed = tighten_round(&mut path, &mut count, d, &todo, zone);
-        if changed.is_empty() {
-            break;
-        }
-        changes += changed.len();
-        let mut next_dirty = vec![false; points.len()];
+        let changed = tighten_round(path, &mut self.count, d, &todo, zone);
+        self.settled = changed.is_empty();
+        self.changes += changed.len();
+        self.dirty.fill(false);
         for c in changed {
             for k in [c.before, c.vertex, c.after] {
-                next_dirty[k] = k >= first;
+                self.dirty[k] = k >= self.first;
             }
         }
-        dirty = next_dirty;
+        !self.settled
     }
-    (path.points(), path.ids(), changes)
+
+    /// The path as it stands.
+    pub(crate) fn points(&self) -> Vec<GridPoint> {
+        self.path.points()
+    }
+
+    /// The path, the index in the original points of each vertex kept (in
+    /// order), and the number of vertices removed or moved.
+    pub(crate) fn finish(self) -> (Vec<GridPoint>, Vec<usize>, usize) {
+        (self.path.points(), self.path.ids(), self.changes)
+    }
 }
 
 /// Vertices a pass must look at before it is split into [`STRIPS`].
@@ -1497,6 +1529,13 @@ mod tests {
         oxcover_grid::io::ascii_mask(rows).expect("valid map")
     }
 
+    /// [`tighten_from`] moving every vertex: the path and the number of
+    /// vertices removed or moved.
+    fn tighten(points: &[GridPoint], d: &Detours<'_>, count: Grid<u16>) -> (Vec<GridPoint>, usize) {
+        let (points, _, changes) = tighten_from(points, d, count, 0, None);
+        (points, changes)
+    }
+
     fn time() -> TimeModel {
         TimeModel {
             linear_speed: 6.0,
@@ -1663,6 +1702,32 @@ mod tests {
 
     /// A zigzag through an open room where only the middle row must be
     /// covered: tightened to (nearly) the straight line, still covering it.
+    /// Pass by pass, a tightening ends where [`tighten_from`] does, in at
+    /// most [`ROUNDS`] passes, and then runs no more.
+    #[test]
+    fn a_tightening_pass_by_pass_is_tighten_from() {
+        let plannable = mask(&["...................."; 6]);
+        let coverable = plannable.clone();
+        let path: Vec<GridPoint> = (0..40)
+            .map(|i| {
+                let (row, col) = (i / 20, i % 20);
+                let col = if row == 0 { col } else { 19 - col };
+                let y = 1.5 + 3.0 * row as f64 + if i % 2 == 0 { 0.3 } else { -0.3 };
+                GridPoint::new(col as f64 + 0.5, y)
+            })
+            .collect();
+        let d = reach_one(&plannable, &coverable, 2.0);
+        let whole = tighten_from(&path, &d, reach_counts(&path, &d), 0, None);
+        let mut t = Tightening::new(&path, reach_counts(&path, &d), 0);
+        let mut passes = 0;
+        while t.pass(&d, None) {
+            passes += 1;
+        }
+        assert!(passes > 0 && passes <= ROUNDS, "{passes}");
+        assert!(!t.pass(&d, None));
+        assert_eq!(t.finish(), whole);
+    }
+
     #[test]
     fn a_zigzag_is_tightened() {
         let plannable = mask(&[
