@@ -78,6 +78,7 @@
 //! planner; the boundary pass takes what no clear detour reached.
 
 use std::f64::consts::PI;
+use std::sync::OnceLock;
 
 use rayon::prelude::*;
 
@@ -173,9 +174,10 @@ const LOOP_ENTRIES: usize = 8;
 /// and off: 136 of 410 builds stop early, none that would have won).
 const LAST_PASSES_GAIN: f64 = 0.05;
 
-/// An angle's path after its detours and first tightening pass: its
-/// estimated time then, the driven path, the tightening to go on with.
-type Build<'a> = (f64, PathBuilder<'a>, Tightening);
+/// An angle built: its path's estimated time after its detours and first
+/// tightening pass, and the finished path with its estimated time (none
+/// where it stopped then, too slow to be kept).
+type Built<'a> = (f64, Option<(f64, PathBuilder<'a>)>);
 
 fn plan_lanes<'a>(
     input: &PlannerInput<'a>,
@@ -338,10 +340,21 @@ fn plan_lanes<'a>(
     };
     // The model above misjudges what detours and tightening will make of
     // an angle, so the best few are built to the end (in parallel, the
-    // first of equal times winning) and the fastest path is kept. Each is
-    // driven, given its detours and a first tightening pass; those then
-    // more than `LAST_PASSES_GAIN` slower than the fastest go no further.
-    let start_build = |(_, chains, order): &(f64, Vec<Chain>, Tour)| -> Result<Build<'_>> {
+    // first of equal times winning) and the fastest path is kept. Only
+    // those whose path, after its detours and first tightening pass, is
+    // within `LAST_PASSES_GAIN` of the fastest's then are kept: each
+    // angle stops as soon as every angle's time after that pass is known
+    // and it is not among them (which ones stop does not depend on which
+    // angle got there first, only how much work the others did before).
+    let building = built_count.min(ordered.len());
+    let first_pass: Vec<OnceLock<f64>> = (0..building).map(|_| OnceLock::new()).collect();
+    let behind = |time: f64| {
+        let known: Option<Vec<f64>> = first_pass.iter().map(|t| t.get().copied()).collect();
+        known.is_some_and(|t| {
+            time > (1.0 + LAST_PASSES_GAIN) * t.into_iter().fold(f64::INFINITY, f64::min)
+        })
+    };
+    let build = |(i, (_, chains, order)): (usize, &(f64, Vec<Chain>, Tour))| -> Result<Built<'a>> {
         let mut nodes: Vec<Node> = loops.iter().map(Node::Loop).collect();
         nodes.extend(chains.iter().map(Node::Chain));
         let mut path = PathBuilder::new(plannable, start);
@@ -356,32 +369,38 @@ fn plan_lanes<'a>(
         // towards the line of their neighbours, where coverage allows.
         let mut tightening = Tightening::new(&points, count, 0);
         tightening.pass(&detours, None);
-        let time = polyline_time(&tightening.points(), &cell_time);
-        Ok((time, path, tightening))
-    };
-    let finish_build = |build: Build<'a>| -> Result<(f64, PathBuilder<'a>)> {
-        let (_, mut path, mut tightening) = build;
-        while tightening.pass(&detours, None) {}
+        let first = polyline_time(&tightening.points(), &cell_time);
+        // Set once, here only.
+        let _ = first_pass[i].set(first);
+        loop {
+            if behind(first) {
+                return Ok((first, None));
+            }
+            if !tightening.pass(&detours, None) {
+                break;
+            }
+        }
         path.replace(tightening.finish().0);
         path.cover_leftovers(input.coarse, input.visit_radius())?;
         let to_exit = exit.map_or(0.0, |e| cell_time.time((e - path.last()).norm(), 0.0));
-        Ok((polyline_time(path.points(), &cell_time) + to_exit, path))
+        Ok((
+            first,
+            Some((polyline_time(path.points(), &cell_time) + to_exit, path)),
+        ))
     };
-    let started: Vec<Result<Build<'_>>> = ordered
+    let built: Vec<Result<Built<'_>>> = ordered
         .par_iter()
-        .take(built_count)
-        .map(start_build)
+        .take(building)
+        .enumerate()
+        .map(build)
         .collect();
-    let started = started.into_iter().collect::<Result<Vec<_>>>()?;
-    let lead = started.iter().map(|b| b.0).fold(f64::INFINITY, f64::min);
-    let built: Vec<Result<(f64, PathBuilder<'_>)>> = started
-        .into_par_iter()
-        .filter(|b| b.0 <= (1.0 + LAST_PASSES_GAIN) * lead)
-        .map(finish_build)
-        .collect();
+    let built = built.into_iter().collect::<Result<Vec<_>>>()?;
+    let lead = built.iter().map(|b| b.0).fold(f64::INFINITY, f64::min);
     let mut best: Option<(f64, PathBuilder<'_>)> = None;
-    for b in built {
-        let b = b?;
+    for (first, b) in built {
+        let Some(b) = b.filter(|_| first <= (1.0 + LAST_PASSES_GAIN) * lead) else {
+            continue;
+        };
         if best.as_ref().is_none_or(|x| b.0 < x.0) {
             best = Some(b);
         }
