@@ -14,6 +14,7 @@
 //! walls, inner strips where offsets vanish).
 
 use oxcover_distance::{AStar, Wavefront, cidt};
+use oxcover_grid::math::fast_floor;
 use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear, segment_distance};
 use oxcover_grid::{Cell, CoarseGrid, Grid, MapFrame, Point};
 
@@ -410,10 +411,19 @@ pub(crate) fn point_clearance(mask: &Grid<bool>, p: GridPoint, clearance: f64) -
 fn mark_near(coarse: &CoarseGrid, points: &[GridPoint], radius: f64, wanted: &mut Grid<bool>) {
     let reps = coarse.representatives();
     let k = coarse.block_size() as f64;
+    // A block whose cells all lie more than `radius` beyond `p` in one
+    // axis holds no representative within reach: of the 3 × 3 blocks
+    // round `p`'s, only those whose extent comes within `radius` of it
+    // (a representative is a cell centre, half a cell inside its block).
+    let blocks = |x: f64| {
+        let b = fast_floor(x / k) as i64;
+        let lo = fast_floor((x - radius) / k) as i64;
+        let hi = fast_floor((x + radius) / k) as i64;
+        lo.max(b - 1)..=hi.min(b + 1)
+    };
     let visit = |p: GridPoint| {
-        let (bc, br) = ((p.x / k).floor() as i64, (p.y / k).floor() as i64);
-        for r in br - 1..=br + 1 {
-            for c in bc - 1..=bc + 1 {
+        for r in blocks(p.y) {
+            for c in blocks(p.x) {
                 if r < 0 || c < 0 {
                     continue;
                 }
