@@ -196,18 +196,11 @@ fn plan_lanes<'a>(
     };
     let time = input.time;
     let tool = input.tool_cells.max(0.5);
-    let loops = edge_loops(plannable, input.admissible);
-    // The C-space at least half a tool radius inside its boundary.
-    // Walls only: a room cut is no wall, lanes run up to it.
-    let blocked = input.admissible.map(|&a| !a);
-    let d2 = center_distance_sq(&blocked);
-    let inset = 1.0 + tool;
-    let (w, h) = (plannable.width(), plannable.height());
-    let lane_mask = Grid::from_fn(w, h, |c| {
-        // Beyond the grid counts as blocked too.
-        let edge = (c.row + 1).min(c.col + 1).min(h - c.row).min(w - c.col) as f64;
-        plannable[c] && (d2[c] as f64) >= inset * inset && edge >= inset
-    });
+    // The loops and the lane mask, side by side (independent).
+    let (loops, lane_mask) = rayon::join(
+        || edge_loops(plannable, input.admissible),
+        || lane_mask(plannable, input.admissible, tool),
+    );
     // Lines one tool width apart, less the margin of the contract's samples
     // (a quarter of a cell apart along the path).
     // A tool narrower than a cell: lanes through the cell centres, one row
@@ -407,6 +400,21 @@ fn plan_lanes<'a>(
     }
     let (_, path) = best.ok_or_else(|| Error::Internal("no lane angle was built".into()))?;
     Ok(path.into_metres(&input.frame))
+}
+
+/// Where lanes may run: the plannable cells at least a cell and a tool
+/// radius (`tool` cells) from every non-admissible cell and from the
+/// grid's edge. Walls only: a room cut is no wall, lanes run up to it.
+fn lane_mask(plannable: &Grid<bool>, admissible: &Grid<bool>, tool: f64) -> Grid<bool> {
+    let blocked = admissible.map(|&a| !a);
+    let d2 = center_distance_sq(&blocked);
+    let inset = 1.0 + tool;
+    let (w, h) = (plannable.width(), plannable.height());
+    Grid::from_fn(w, h, |c| {
+        // Beyond the grid counts as blocked too.
+        let edge = (c.row + 1).min(c.col + 1).min(h - c.row).min(w - c.col) as f64;
+        plannable[c] && (d2[c] as f64) >= inset * inset && edge >= inset
+    })
 }
 
 // ---------------------------------------------------------------- loops
