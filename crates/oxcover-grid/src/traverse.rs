@@ -10,7 +10,7 @@
 //! through walls.
 
 use crate::grid::{Cell, Grid};
-use crate::math::{Point, fast_floor};
+use crate::math::{Point, Vector, fast_floor};
 
 /// A point in grid coordinates (see the module docs): the workspace's
 /// [`Point`], read as `x` along columns and `y` along rows (downwards).
@@ -142,12 +142,43 @@ pub fn traverse(
 const CORNER_EPS: f64 = 1e-9;
 
 /// Whether every cell the segment `a → b` crosses is set in `mask`.
+///
+/// An end on a cell border (within [`BORDER_EPS`]) touches the cells on
+/// both sides of it, and so does the whole of a segment that runs along a
+/// border: a point on a border belongs to either cell once a checker
+/// converts it to metres and back with its own rounding. Such segments are
+/// traversed again shifted a little across each border their ends lie on,
+/// and are clear only if every copy is.
 #[must_use]
 pub fn segment_clear(mask: &Grid<bool>, a: GridPoint, b: GridPoint) -> bool {
-    traverse(mask.width(), mask.height(), a, b, |c, _, _| {
-        c.is_some_and(|c| mask[c])
+    let clear = |a: GridPoint, b: GridPoint| {
+        traverse(mask.width(), mask.height(), a, b, |c, _, _| {
+            c.is_some_and(|c| mask[c])
+        })
+    };
+    if !clear(a, b) {
+        return false;
+    }
+    let on = |v: f64| (v - v.round()).abs() <= BORDER_EPS;
+    let (sx, sy) = (on(a.x) || on(b.x), on(a.y) || on(b.y));
+    if !(sx || sy) {
+        return true;
+    }
+    let shift = 2.0 * BORDER_EPS;
+    let xs: &[f64] = if sx { &[-shift, 0.0, shift] } else { &[0.0] };
+    let ys: &[f64] = if sy { &[-shift, 0.0, shift] } else { &[0.0] };
+    xs.iter().all(|&dx| {
+        ys.iter().all(|&dy| {
+            let d = Vector::new(dx, dy);
+            (dx == 0.0 && dy == 0.0) || clear(a + d, b + d)
+        })
     })
 }
+
+/// How near a cell border (cells) a segment's end counts as on it for
+/// [`segment_clear`]: far beyond the rounding of a metre-to-grid round
+/// trip, far within any step a planner takes.
+pub const BORDER_EPS: f64 = 1e-6;
 
 /// Whether every cell that meets the triangle `tri` widened by `margin`
 /// cells (each of its points moved by up to `margin` along each axis) is
@@ -210,6 +241,38 @@ pub fn triangle_clear(mask: &Grid<bool>, tri: [GridPoint; 3], margin: f64) -> bo
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A segment along a row border, or ending on a border, touches the
+    /// cells on both sides: a blocked cell there makes it unclear (a
+    /// checker rounding its samples may place them on that side); the same
+    /// segments between free cells are clear.
+    #[test]
+    fn segments_on_borders_touch_both_sides() {
+        let mut mask = Grid::new(8, 4, true);
+        // Row 1 blocked at column 4.
+        mask[Cell::new(1, 4)] = false;
+        let p = |x: f64, y: f64| GridPoint::new(x, y);
+        // Along the border between rows 1 and 2, past the blocked cell.
+        assert!(!segment_clear(&mask, p(0.5, 2.0), p(7.5, 2.0)));
+        // Within rounding of it, either side.
+        assert!(!segment_clear(
+            &mask,
+            p(0.5, 2.0 + 1e-9),
+            p(7.5, 2.0 + 1e-9)
+        ));
+        assert!(!segment_clear(
+            &mask,
+            p(0.5, 2.0 - 1e-9),
+            p(7.5, 2.0 - 1e-9)
+        ));
+        // Along the next border down (rows 2 and 3, all free): clear.
+        assert!(segment_clear(&mask, p(0.5, 3.0), p(7.5, 3.0)));
+        // Ending on the blocked cell's left border, coming from below.
+        assert!(!segment_clear(&mask, p(2.5, 3.5), p(4.0, 1.5)));
+        assert!(segment_clear(&mask, p(2.5, 3.5), p(3.9, 1.5)));
+        // Off every border: as the plain traversal says.
+        assert!(segment_clear(&mask, p(0.5, 2.5), p(7.5, 2.5)));
+    }
 
     fn cells(a: GridPoint, b: GridPoint) -> Vec<(usize, usize)> {
         let mut v = Vec::new();
