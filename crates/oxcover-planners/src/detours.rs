@@ -855,11 +855,13 @@ const STRIPS: usize = 4;
 /// bands of rows, each holding about as many of the vertices: every band
 /// tries, in parallel and in path order, its vertices whose change can
 /// touch only its own rows (the box round the vertex and its neighbours,
-/// widened by the reach they count with); the rest are then tried one by
-/// one, in path order. Two such changes in different bands share no cell
-/// and no vertex, so each band's is decided exactly as alone; only the
-/// time a band judges a change by may use a neighbour's neighbour as it
-/// was at the start of the pass (moved meanwhile by another band).
+/// widened by the reach they count with) and whose neighbours' neighbours
+/// (which the time of a change counts) lie in its rows too; the rest are
+/// then tried one by one, in path order. Two such changes in different
+/// bands share no cell and no vertex, and a band reads only vertices no
+/// other band moves, so each band's change is decided exactly as the one
+/// by one pass would decide it from the same path; what differs is the
+/// order (the rest come last).
 fn tighten_round(
     path: &mut Linked,
     count: &mut Grid<u16>,
@@ -917,7 +919,13 @@ fn tighten_round(
                 }
                 let (u, x) = (own.prev[v], own.next[v]);
                 let (rows, _) = cell_box(&[own.pts[u], own.pts[v], own.pts[x]], margin, (w, h));
-                if rows.start < edges[k] || rows.end > edges[k + 1] {
+                let row_in =
+                    |i: usize| i == END || (edges[k]..edges[k + 1]).contains(&row(own.pts[i]));
+                if rows.start < edges[k]
+                    || rows.end > edges[k + 1]
+                    || !row_in(own.prev[u])
+                    || !row_in(own.next[x])
+                {
                     left.push(i);
                 } else if let Some(c) = try_replace(&mut own, &mut counts, d, v, zone) {
                     log.push(c);
