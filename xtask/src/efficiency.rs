@@ -351,6 +351,8 @@ pub fn run(only: Option<&str>, filter: Option<&str>) -> anyhow::Result<()> {
                 .maps
                 .iter()
                 .map(|(map_name, map)| (alone_ms(name, map, true), map_name, map))
+                // A map that failed to plan has no time (its row says so).
+                .filter(|(ms, _, _)| !ms.is_nan())
                 .fold(None, |a: Option<(f64, &String, &OccupancyGrid)>, b| {
                     if a.is_none_or(|a| b.0 > a.0) {
                         Some(b)

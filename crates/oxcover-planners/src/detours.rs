@@ -920,7 +920,7 @@ fn tighten_round(
                 let (u, x) = (own.prev[v], own.next[v]);
                 let (rows, _) = cell_box(&[own.pts[u], own.pts[v], own.pts[x]], margin, (w, h));
                 let row_in =
-                    |i: usize| i == END || (edges[k]..edges[k + 1]).contains(&row(own.pts[i]));
+                    |n: usize| n == END || (edges[k]..edges[k + 1]).contains(&row(own.pts[n]));
                 if rows.start < edges[k]
                     || rows.end > edges[k + 1]
                     || !row_in(own.prev[u])
