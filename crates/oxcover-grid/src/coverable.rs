@@ -10,7 +10,7 @@
 //! silent move.
 
 use crate::admissible::{TOLERANCE_CELLS, admissible};
-use crate::components::reachable;
+use crate::components::{components4, reachable};
 use crate::edt::center_distance_sq;
 use crate::error::{Error, Result, non_negative, positive};
 use crate::grid::{Cell, Grid};
@@ -140,6 +140,37 @@ impl Coverability {
         Self::new(map, robot, Some(p))
     }
 
+    /// Builds the problem from the first admissible cell (row-major) of the
+    /// largest 4-connected admissible region (ties: the region met first),
+    /// the start experiments use on maps whose first admissible cell may
+    /// lie in a speck. The admissible cells and their regions are found
+    /// once: the region is the reachable set.
+    ///
+    /// # Errors
+    /// [`Error::NoFreeCell`], or [`Error::NoAdmissibleCell`] when no cell is
+    /// admissible for the robot.
+    pub fn in_largest_region(map: &OccupancyGrid, robot: DiscRobot) -> Result<Self> {
+        if map.counts().free == 0 {
+            return Err(Error::NoFreeCell {
+                width: map.width(),
+                height: map.height(),
+            });
+        }
+        let admissible = admissible(map, robot.robot_radius);
+        let regions = components4(&admissible);
+        let no_cell = Error::NoAdmissibleCell {
+            robot_radius: robot.robot_radius,
+        };
+        let big = regions.largest().ok_or(no_cell)?;
+        let labels = regions.labels.as_slice();
+        let first = labels.iter().position(|&l| l == big).unwrap_or_default();
+        let start = Cell::new(first / map.width(), first % map.width());
+        let reachable = regions.labels.map(|&l| l == big);
+        Ok(Self::with_reachable(
+            map, robot, admissible, start, reachable,
+        ))
+    }
+
     fn from_parts(
         map: &OccupancyGrid,
         robot: DiscRobot,
@@ -147,6 +178,16 @@ impl Coverability {
         start: Cell,
     ) -> Self {
         let reachable = reachable(&admissible, start);
+        Self::with_reachable(map, robot, admissible, start, reachable)
+    }
+
+    fn with_reachable(
+        map: &OccupancyGrid,
+        robot: DiscRobot,
+        admissible: Grid<bool>,
+        start: Cell,
+        reachable: Grid<bool>,
+    ) -> Self {
         let coverable = coverable_cells(
             &map.free_mask(),
             &reachable,
@@ -199,6 +240,51 @@ mod tests {
         let p = Coverability::new(&m, DiscRobot::cell_sized(1.0), None).unwrap();
         assert_eq!(p.start, Cell::new(1, 1));
         assert_eq!(p.coverable_count(), 5);
+    }
+
+    #[test]
+    fn largest_region_start_is_the_big_regions_first_cell() {
+        // A speck of two cells first, then a region of six: the start is
+        // the big region's first cell, and its region alone is reachable.
+        let m = map("..#....\n###.##.\n###....", 1.0);
+        let r = DiscRobot::cell_sized(1.0);
+        let p = Coverability::in_largest_region(&m, r).unwrap();
+        assert_eq!(p.start, Cell::new(0, 3));
+        assert_eq!(p.reachable.count_true(), 10);
+        let apart = Coverability::with_start_cell(&m, r, Cell::new(0, 3)).unwrap();
+        assert_eq!(
+            (&p.reachable, &p.coverable),
+            (&apart.reachable, &apart.coverable)
+        );
+        let e = Coverability::in_largest_region(&map("##\n##", 1.0), r).unwrap_err();
+        assert!(e.to_string().contains("no free cell"), "{e}");
+        let big = DiscRobot::new(5.0, 0.5).unwrap();
+        let e = Coverability::in_largest_region(&m, big).unwrap_err();
+        assert!(e.to_string().contains("no admissible cell"), "{e}");
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(48))]
+        /// The same problem as from the largest region's first cell found
+        /// apart (its admissible cells and regions computed again).
+        #[test]
+        fn largest_region_matches_the_start_found_apart(seed in 0u64..1000, radius in 0usize..3) {
+            let m = crate::random::random_density(23, 17, 0.3, seed);
+            let robot = DiscRobot::new(radius as f64 * 0.5, 1.0).unwrap();
+            let regions = components4(&admissible(&m, robot.robot_radius));
+            match regions.largest() {
+                Some(big) => {
+                    let first = regions.labels.cells().find(|&c| regions.labels[c] == big).unwrap();
+                    let apart = Coverability::with_start_cell(&m, robot, first).unwrap();
+                    let once = Coverability::in_largest_region(&m, robot).unwrap();
+                    proptest::prop_assert_eq!(
+                        (once.start, &once.admissible, &once.reachable, &once.coverable),
+                        (apart.start, &apart.admissible, &apart.reachable, &apart.coverable)
+                    );
+                }
+                None => proptest::prop_assert!(Coverability::in_largest_region(&m, robot).is_err()),
+            }
+        }
     }
 
     #[test]

@@ -115,21 +115,7 @@ impl CoverageProblem {
             Start::First => (Coverability::new(map, robot, None)?, None),
             Start::At(p) => (Coverability::new(map, robot, Some(p))?, Some(p)),
             Start::Cell(c) => (Coverability::with_start_cell(map, robot, c)?, None),
-            Start::LargestRegion => {
-                let cell = largest_region_start(map, robot.robot_radius).ok_or(
-                    oxcover_grid::Error::NoAdmissibleCell {
-                        robot_radius: robot.robot_radius,
-                    },
-                );
-                match cell {
-                    Ok(c) => (Coverability::with_start_cell(map, robot, c)?, None),
-                    // Let the grid crate name the problem (no free cell, or none admissible).
-                    Err(e) => {
-                        Coverability::new(map, robot, None)?;
-                        return Err(e.into());
-                    }
-                }
-            }
+            Start::LargestRegion => (Coverability::in_largest_region(map, robot)?, None),
         };
         let frame = *map.frame();
         let coarse = CoarseGrid::new(&cells.reachable, coarse_block(&robot, frame.resolution()));
