@@ -29,9 +29,7 @@ pub fn admissible(map: &OccupancyGrid, robot_radius: f64) -> Grid<bool> {
     // sqrt(d4)/2 >= r - tol  <=>  d4 >= (2(r - tol))^2
     let t = 2.0 * (r - TOLERANCE_CELLS);
     let t2 = t * t;
-    Grid::from_fn(free.width(), free.height(), |c| {
-        free[c] && d4[c] as f64 >= t2
-    })
+    free.zip_map(&d4, |&f, &d| f && d as f64 >= t2)
 }
 
 /// Clearance of every cell in metres: distance from its centre to the nearest

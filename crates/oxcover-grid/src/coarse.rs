@@ -39,8 +39,11 @@ impl CoarseGrid {
         let k = block.max(1);
         let (fw, fh) = (plannable.width(), plannable.height());
         let (cw, ch) = (fw.div_ceil(k), fh.div_ceil(k));
-        let reps = Grid::from_fn(cw, ch, |b| {
+        // Each block's representative, and whether all its cells are
+        // plannable (two such blocks side by side are linked: no search).
+        let blocks = Grid::from_fn(cw, ch, |b| {
             let mut best: Option<(usize, Cell)> = None;
+            let mut open = 0;
             // Doubled coordinates keep the nominal centre integral.
             let cr = 2 * b.row * k + k - 1;
             let cc = 2 * b.col * k + k - 1;
@@ -50,6 +53,7 @@ impl CoarseGrid {
                     if !plannable[cell] {
                         continue;
                     }
+                    open += 1;
                     let dr = (2 * r).abs_diff(cr);
                     let dc = (2 * c).abs_diff(cc);
                     let d = dr * dr + dc * dc;
@@ -58,8 +62,11 @@ impl CoarseGrid {
                     }
                 }
             }
-            best.map(|(_, c)| c)
+            let rows = (b.row * k..((b.row + 1) * k).min(fh)).len();
+            let cols = (b.col * k..((b.col + 1) * k).min(fw)).len();
+            (best.map(|(_, c)| c), open == rows * cols)
         });
+        let reps = blocks.map(|b| b.0);
         let mut grid = Self {
             block: k,
             fine_width: fw,
@@ -75,6 +82,7 @@ impl CoarseGrid {
                 };
                 let linked = match (grid.reps[b], grid.reps[n]) {
                     (Some(a), Some(z)) if k == 1 => plannable[a] && plannable[z],
+                    (Some(_), Some(_)) if blocks[b].1 && blocks[n].1 => true,
                     (Some(_), Some(_)) => grid.window_path(plannable, b, n, &mut scratch).is_some(),
                     _ => false,
                 };
@@ -303,5 +311,26 @@ mod tests {
             g.moves()[Cell::new(0, 0)],
             Dir4::East.bit() | Dir4::South.bit()
         );
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+        /// Every move is the window search's answer (blocks whose cells are
+        /// all plannable are linked without one).
+        #[test]
+        fn moves_are_the_window_paths(seed in 0u64..1000, density in 0.0f64..0.4, block in 1usize..5) {
+            let free = crate::random::random_density(19, 14, density, seed).free_mask();
+            let g = CoarseGrid::new(&free, block);
+            for b in g.representatives().cells() {
+                for dir in [Dir4::East, Dir4::South] {
+                    let Some(n) = g.representatives().step(b, dir) else {
+                        continue;
+                    };
+                    let linked = g.connect(&free, b, n).is_some();
+                    proptest::prop_assert_eq!(g.can_move(b, dir), linked, "{:?} {:?}", b, dir);
+                    proptest::prop_assert_eq!(g.can_move(n, dir.opposite()), linked);
+                }
+            }
+        }
     }
 }

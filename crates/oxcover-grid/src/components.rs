@@ -78,12 +78,21 @@ pub fn reachable(mask: &Grid<bool>, start: Cell) -> Grid<bool> {
     if !mask.is_set(start) {
         return out;
     }
-    out[start] = true;
-    let mut stack = vec![start];
-    while let Some(c) = stack.pop() {
-        for (_, n) in mask.neighbours4(c) {
-            if mask[n] && !out[n] {
-                out[n] = true;
+    // By index (this may visit every cell of the map).
+    let (w, set) = (mask.width(), mask.as_slice());
+    let seen = out.as_mut_slice();
+    let first = start.row * w + start.col;
+    seen[first] = true;
+    let mut stack = vec![first];
+    while let Some(i) = stack.pop() {
+        let col = i % w;
+        let west = (col > 0).then(|| i - 1);
+        let east = (col + 1 < w).then_some(i + 1);
+        let north = i.checked_sub(w);
+        let south = Some(i + w).filter(|&n| n < set.len());
+        for n in [north, west, east, south].into_iter().flatten() {
+            if set[n] && !seen[n] {
+                seen[n] = true;
                 stack.push(n);
             }
         }
@@ -111,5 +120,19 @@ mod tests {
         let r = reachable(&m.free_mask(), Cell::new(0, 3));
         assert_eq!(r.count_true(), 4);
         assert_eq!(reachable(&m.free_mask(), Cell::new(1, 0)).count_true(), 0);
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+        /// The reachable set is the start's component.
+        #[test]
+        fn reachable_is_the_starts_component(seed in 0u64..1000, density in 0.0f64..0.6, at in 0usize..(23 * 17)) {
+            let free = crate::random::random_density(23, 17, density, seed).free_mask();
+            let start = Cell::new(at / 23, at % 23);
+            let comps = components4(&free);
+            let own = comps.labels[start];
+            let expected = Grid::from_fn(23, 17, |c| own != 0 && comps.labels[c] == own);
+            proptest::prop_assert_eq!(reachable(&free, start), expected);
+        }
     }
 }

@@ -219,9 +219,7 @@ pub fn coverable_cells(free: &Grid<bool>, centres: &Grid<bool>, tool_cells: f64)
     }
     let d2 = center_distance_sq(centres);
     let r2 = reach * reach;
-    Grid::from_fn(free.width(), free.height(), |c| {
-        free[c] && (d2[c] as f64) <= r2
-    })
+    free.zip_map(&d2, |&f, &d| f && (d as f64) <= r2)
 }
 
 #[cfg(test)]

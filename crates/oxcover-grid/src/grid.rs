@@ -354,6 +354,30 @@ impl<T> Grid<T> {
         }
     }
 
+    /// A grid of the same shape with `f` applied to every value and the
+    /// value of the same cell in `other`.
+    ///
+    /// # Panics
+    /// If `other` is not the same size.
+    #[must_use]
+    pub fn zip_map<U, V>(&self, other: &Grid<U>, mut f: impl FnMut(&T, &U) -> V) -> Grid<V> {
+        assert_eq!(
+            (self.width, self.height),
+            (other.width, other.height),
+            "zip_map needs grids of one size"
+        );
+        Grid {
+            width: self.width,
+            height: self.height,
+            data: self
+                .data
+                .iter()
+                .zip(&other.data)
+                .map(|(a, b)| f(a, b))
+                .collect(),
+        }
+    }
+
     /// Number of cells whose value satisfies `pred`.
     #[must_use]
     pub fn count(&self, mut pred: impl FnMut(&T) -> bool) -> usize {
