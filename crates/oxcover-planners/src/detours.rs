@@ -17,8 +17,9 @@
 //! The cheapest in estimated time (length over speed, heading changes
 //! over the turn rate) that is clear and leaves no cell the segment alone
 //! reached uncovered is inserted; one detour serves a whole cluster of
-//! missed cells. Cells no such detour reaches are left (the caller's
-//! boundary pass visits them).
+//! missed cells, the farthest from the path first (one bend into a strip
+//! beside a lane then reaches the nearer cells on its way). Cells no such
+//! detour reaches are left (the caller's boundary pass visits them).
 //!
 //! [`tighten_from`] then removes the vertices detours made unneeded, moves the
 //! others towards the line of their neighbours or slides them along a
@@ -627,12 +628,8 @@ pub(crate) fn insert_detours(points: &[GridPoint], d: &Detours<'_>) -> (Vec<Grid
     for i in 0..points.len() - 1 {
         buckets.add(i, points[i], points[i + 1]);
     }
-    let missed: Vec<Cell> = d
-        .coverable
-        .true_cells()
-        .filter(|&c| count[c] == 0)
-        .collect();
     let mut near = Vec::new();
+    let missed = deepest_first(d, points, &buckets, &count, &mut near);
     let mut options: Vec<(f64, usize, Via)> = Vec::new();
     for m in missed {
         if count[m] > 0 {
@@ -707,6 +704,39 @@ pub(crate) fn insert_detours(points: &[GridPoint], d: &Detours<'_>) -> (Vec<Grid
         buckets.add(prev.0, prev.1, pb);
     }
     (path.points(), count)
+}
+
+/// The coverable cells `count` says no segment of `points` reaches, the
+/// farthest from the path first (a cell out of every segment's search
+/// radius counts as farthest; ties in row-major order). A strip the path
+/// runs beside is then bent into from its far side: the one bend reaches
+/// the nearer cells on the way, where the nearest first would bend the
+/// path again for each row of the strip.
+fn deepest_first(
+    d: &Detours<'_>,
+    points: &[GridPoint],
+    buckets: &SegmentBuckets,
+    count: &Grid<u16>,
+    near: &mut Vec<usize>,
+) -> Vec<Cell> {
+    let mut missed: Vec<(f64, Cell)> = d
+        .coverable
+        .true_cells()
+        .filter(|&c| count[c] == 0)
+        .map(|c| {
+            let m = cell_center(c);
+            buckets.near(m, d.search + d.reach, near);
+            let depth = near
+                .iter()
+                .filter(|&&a| a + 1 < points.len())
+                .map(|&a| segment_distance_sq(points[a], points[a + 1], m))
+                .fold(f64::INFINITY, f64::min);
+            (depth, c)
+        })
+        .collect();
+    // Stable: equal depths keep the row-major order.
+    missed.sort_by(|x, y| y.0.total_cmp(&x.0));
+    missed.into_iter().map(|(_, c)| c).collect()
 }
 
 /// How far along either piece a vertex is tried slid.
@@ -1623,6 +1653,36 @@ mod tests {
             .map(|w| heading_change(w[1] - w[0], w[2] - w[1]))
             .sum();
         assert!(turned < std::f64::consts::FRAC_PI_2, "{turned}: {out:?}");
+    }
+
+    /// A lane along a corridor's middle row, reach one cell, beside a bay
+    /// two rows deep: the bay's far row is bent into first, and the bend
+    /// reaches the near row on its way, so each stretch of the bay costs
+    /// one detour, not one per row; nothing is left and nothing lost.
+    #[test]
+    fn a_bay_is_bent_into_from_its_far_side() {
+        let plannable = mask(&[
+            "....................",
+            "....................",
+            "....................",
+            "#######....#########",
+            "#######....#########",
+        ]);
+        // The row beyond the lane needs no cover: the lane may bend away.
+        let coverable = Grid::from_fn(20, 5, |c| c.row > 0 && plannable[c]);
+        let path = vec![GridPoint::new(0.5, 1.5), GridPoint::new(19.5, 1.5)];
+        let d = reach_one(&plannable, &coverable, 4.0);
+        let (out, _) = insert_detours(&path, &d);
+        let covered = sampled(20, 5, &out, 1.0);
+        for c in coverable.true_cells() {
+            assert!(covered[c], "{c:?} missed: {out:?}");
+        }
+        // The first bend goes a reach short of the far row (4): its vertex
+        // lies in row 3, not in row 2 (a reach short of the near row).
+        assert!(out[2].y > 3.0, "{out:?}");
+        // Fewer new vertices than the bay has cells (row-major order, the
+        // near row first, took 10 here).
+        assert!(out.len() - path.len() < 8, "{out:?}");
     }
 
     /// A free 10 × 4 field where only the cell in row 2, column 5 (centre
