@@ -400,7 +400,11 @@ pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
         || request.rooms.then(|| room_labels(map)),
     );
     let problem = problem?;
-    let units = rooms.map(|rooms| units_of(&problem, &rooms));
+    // The plannable cells are one 4-connected region: all in one room,
+    // they are one unit, planned whole (no units to find).
+    let units = rooms
+        .filter(|rooms| in_several_rooms(problem.plannable(), &rooms.labels))
+        .map(|rooms| units_of(&problem, &rooms));
     match units.filter(|u| u.count() > 1) {
         Some(units) => plan_rooms(&problem, &units, request, t0),
         None => plan_whole(&problem, request, t0),
@@ -432,6 +436,17 @@ pub fn room_units(map: &OccupancyGrid, problem: &CoverageProblem) -> RoomUnits {
 /// free cells with indoor defaults.
 fn room_labels(map: &OccupancyGrid) -> Rooms {
     voronoi(&map.free_mask(), &RoomParams::indoor(map.resolution()))
+}
+
+/// Whether the `plannable` cells carry more than one room label.
+fn in_several_rooms(plannable: &Grid<bool>, labels: &Grid<u32>) -> bool {
+    let mut seen = None;
+    plannable
+        .as_slice()
+        .iter()
+        .zip(labels.as_slice())
+        .filter(|&(&p, _)| p)
+        .any(|(_, &l)| *seen.get_or_insert(l) != l)
 }
 
 /// The units of `rooms` for `problem` (see [`room_units`]).
@@ -973,6 +988,18 @@ mod tests {
     use super::*;
     use oxcover_grid::random::rectangles;
     use oxcover_planners::PlannerInput;
+
+    /// One label under every plannable cell (whatever the others carry) is
+    /// one room; a second label is several.
+    #[test]
+    fn several_rooms_need_two_labels_under_the_plannable_cells() {
+        let plannable = Grid::from_fn(4, 2, |c| c.col < 3);
+        let mut labels = Grid::from_fn(4, 2, |c| if c.col < 3 { 2 } else { 5 });
+        assert!(!in_several_rooms(&plannable, &labels));
+        labels[Cell::new(1, 2)] = 0;
+        assert!(in_several_rooms(&plannable, &labels));
+        assert!(!in_several_rooms(&Grid::new(4, 2, false), &labels));
+    }
 
     #[test]
     fn unknown_planner_lists_the_known_ones() {
