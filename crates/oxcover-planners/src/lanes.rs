@@ -86,7 +86,7 @@ use std::sync::OnceLock;
 use rayon::prelude::*;
 
 use oxcover_distance::Wavefront;
-use oxcover_grid::edt::center_distance_sq;
+use oxcover_grid::edt::{boundary_distance_sq4, center_distance_sq};
 use oxcover_grid::math::{fast_ceil, fast_floor};
 use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear, segment_distance};
 use oxcover_grid::{Cell, Dir4, Grid, Vector};
@@ -200,9 +200,15 @@ fn plan_lanes<'a>(
     let time = input.time;
     let tool = input.tool_cells.max(0.5);
     // The loops and the lane mask, side by side (independent).
-    let (loops, lane_mask) = rayon::join(
+    // The lane mask's clearance (4·d², cells, to its nearest outside
+    // cell's boundary) lets each line skip the samples surely inside it.
+    let (loops, (lane_mask, mask_clearance)) = rayon::join(
         || edge_loops(plannable, input.admissible),
-        || lane_mask(plannable, input.admissible, tool),
+        || {
+            let mask = lane_mask(plannable, input.admissible, tool);
+            let clearance = boundary_distance_sq4(&mask.map(|&m| !m), true).into_vec();
+            (mask, clearance)
+        },
     );
     // Lines one tool width apart, less the margin of the contract's samples
     // (a quarter of a cell apart along the path).
@@ -245,7 +251,9 @@ fn plan_lanes<'a>(
     // Each angle's chains and modelled time, in parallel (in the order of
     // `candidates` whatever the thread count).
     let score = |(i, &theta): (usize, &f64)| {
-        let (chains, step) = chains_at(plannable, &lane_mask, theta, spacing, line_inset);
+        let clearance = Some(mask_clearance.as_slice());
+        let (chains, step) =
+            chains_at(plannable, &lane_mask, clearance, theta, spacing, line_inset);
         let mut cost = chains
             .iter()
             .map(|c| c.time(&cell_time, spacing))
@@ -816,6 +824,7 @@ fn drive_chain(path: &mut PathBuilder<'_>, c: &Chain, option: usize) -> Result<(
 fn chains_at(
     plannable: &Grid<bool>,
     lane_mask: &Grid<bool>,
+    clearance: Option<&[u64]>,
     theta: f64,
     spacing: f64,
     inset: f64,
@@ -906,14 +915,15 @@ fn chains_at(
         // `at(u, v)` and `cell_of` on the lane mask, term for term, with
         // the line's own terms once per line.
         let (vx, vy) = (v * n.x, v * n.y);
-        for s in in_box(v) {
+        let range = in_box(v);
+        let mut s = range.start;
+        while s < range.end {
             let u = u0 + s as f64 * 0.25;
             let (x, y) = (u * d.x + vx, u * d.y + vy);
-            let inside = x >= 0.0
-                && y >= 0.0
-                && x < w
-                && y < h
-                && mask[fast_floor(y) as usize * width + fast_floor(x) as usize];
+            let cell = (x >= 0.0 && y >= 0.0 && x < w && y < h)
+                .then(|| (fast_floor(x), fast_floor(y)))
+                .filter(|&(cx, cy)| mask[cy as usize * width + cx as usize]);
+            let inside = cell.is_some();
             match (inside, open) {
                 (true, None) => open = Some(u),
                 (false, Some(o)) => {
@@ -922,9 +932,22 @@ fn chains_at(
                 }
                 _ => {}
             }
-            if inside {
+            if let Some((cx, cy)) = cell {
                 last_in = u;
+                // The next samples within the cell's clearance less the
+                // sample's offset from its centre are inside too.
+                if let Some(clear4) = clearance {
+                    let reach = (clear4[cy as usize * width + cx as usize] as f64).sqrt() / 2.0
+                        - (x - cx - 0.5).hypot(y - cy - 0.5)
+                        - JUMP_MARGIN;
+                    let k = (reach / 0.25).max(0.0) as usize;
+                    if k > 0 {
+                        s = (s + k).min(range.end - 1);
+                        last_in = u0 + s as f64 * 0.25;
+                    }
+                }
             }
+            s += 1;
         }
         if let Some(o) = open {
             runs.push((o, last_in));
@@ -980,6 +1003,10 @@ fn chains_at(
     }
     (chains, if lines > 1 { step } else { spacing })
 }
+
+/// Slack (cells) kept when a line skips the samples within a mask cell's
+/// clearance: rounding never decides that a sample is inside.
+const JUMP_MARGIN: f64 = 1e-6;
 
 /// What re-hatching a chain's area at another angle needs.
 struct Hatch<'a> {
@@ -1128,7 +1155,8 @@ impl Hatch<'_> {
         });
         let mut best: Option<(f64, Vec<Chain>)> = None;
         for &theta in angles {
-            let (chains, step) = chains_at(&plannable, &mask, theta, self.spacing, self.inset);
+            let (chains, step) =
+                chains_at(&plannable, &mask, None, theta, self.spacing, self.inset);
             let t = cost(&chains, step);
             if best.as_ref().is_none_or(|b| t < b.0) {
                 best = Some((t, chains));
@@ -1905,7 +1933,7 @@ mod tests {
         let lane_mask = Grid::from_fn(40, 24, |c: Cell| (4..20).contains(&c.row));
         let spacing = 2.0 * (9.0f64 - 1.0 / 64.0).sqrt() * 0.999;
         let rows = |inset: f64| -> Vec<f64> {
-            let (chains, _) = chains_at(&plannable, &lane_mask, 0.0, spacing, inset);
+            let (chains, _) = chains_at(&plannable, &lane_mask, None, 0.0, spacing, inset);
             let mut v: Vec<f64> = chains
                 .iter()
                 .flat_map(|c| &c.lanes)
@@ -1919,7 +1947,7 @@ mod tests {
         assert_eq!(rows(inset), vec![7.0, 12.0, 17.0]);
         // Where the mask is narrower than two insets, one line down its middle.
         let thin = Grid::from_fn(40, 24, |c: Cell| (10..13).contains(&c.row));
-        let (chains, _) = chains_at(&plannable, &thin, 0.0, spacing, inset);
+        let (chains, _) = chains_at(&plannable, &thin, None, 0.0, spacing, inset);
         let ys: Vec<f64> = chains
             .iter()
             .flat_map(|c| &c.lanes)
@@ -1927,6 +1955,29 @@ mod tests {
             .collect();
         assert_eq!(ys.len(), 1);
         assert!((ys[0] - EDGE_NUDGE - 11.5).abs() < 1e-9, "{ys:?}");
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(40))]
+        /// Lines that skip the samples within the lane mask's clearance
+        /// find the same chains as lines sampled all along.
+        #[test]
+        fn skipping_the_clear_samples_finds_the_same_chains(
+            seed in 0u64..1000,
+            blobs in 1usize..8,
+            theta in 0.0f64..std::f64::consts::PI,
+            tool in 1.0f64..4.0,
+        ) {
+            let map = oxcover_grid::random::blobs(61, 47, blobs, 5, seed);
+            let plannable = map.free_mask();
+            let mask = lane_mask(&plannable, &plannable, tool);
+            let clearance = boundary_distance_sq4(&mask.map(|&m| !m), true).into_vec();
+            let spacing = 2.0 * (tool * tool - 1.0 / 64.0).sqrt() * 0.999;
+            let inset = (tool - OUTSET - LINE_MARGIN).max(0.0);
+            let all = chains_at(&plannable, &mask, None, theta, spacing, inset);
+            let skipping = chains_at(&plannable, &mask, Some(&clearance), theta, spacing, inset);
+            proptest::prop_assert_eq!(all, skipping);
+        }
     }
 
     /// The re-hatching of a lane mask `mask` hatched at `theta`, tool 3
@@ -1946,7 +1997,7 @@ mod tests {
             inset,
             time: &time,
         };
-        let (chains, step) = chains_at(&plannable, mask, theta, spacing, inset);
+        let (chains, step) = chains_at(&plannable, mask, None, theta, spacing, inset);
         let (new, saving) = hatch.rehatch(chains.clone(), step, &[0.0, PI / 2.0]);
         (chains, new, saving)
     }
