@@ -20,6 +20,13 @@
 //! row pass runs a parabola envelope over the cell edges `e = 2i − 1`, each
 //! with the smaller `G` of the two cells it separates, evaluated at `2x`, and
 //! takes `G(x)` itself where smaller (`h(0) = 0`).
+//!
+//! Each pass runs in parallel (rayon): the column pass by stripes of
+//! columns, the row pass by blocks of rows. Every value is computed as a
+//! single-threaded pass would compute it, so the result does not depend on
+//! the thread count.
+
+use rayon::prelude::*;
 
 use crate::grid::Grid;
 
@@ -62,19 +69,77 @@ impl Kernel {
     }
 }
 
+/// Columns per task of the column pass.
+const STRIPE: usize = 256;
+/// Rows per task of the row pass.
+const ROWS: usize = 32;
+
 fn transform(sources: &Grid<bool>, outside: bool, kernel: Kernel) -> Grid<u64> {
-    let h = |k: i64| kernel.h(k);
     let (w, hgt) = (sources.width(), sources.height());
-    // Column pass: h of the distance to the nearest source in the column. `h` is
-    // monotone in |k|, so the nearest source row gives the minimum. Rows are
-    // walked in memory order, every column at once.
-    let mut g = vec![INFINITE; w * hgt];
+    if w == 0 || hgt == 0 {
+        return Grid::new(w, hgt, INFINITE);
+    }
     let src = sources.as_slice();
+    // Column pass, in stripes of columns side by side: each stripe's
+    // values row-major within the stripe.
+    let stripes: Vec<Vec<u64>> = (0..w.div_ceil(STRIPE))
+        .into_par_iter()
+        .map(|k| {
+            column_pass(
+                src,
+                w,
+                hgt,
+                k * STRIPE..((k + 1) * STRIPE).min(w),
+                outside,
+                kernel,
+            )
+        })
+        .collect();
+    // Row pass, blocks of rows side by side, on lines padded with a wall
+    // column each side when the outside is a source.
+    let pad = usize::from(outside);
+    let m = w + 2 * pad;
+    let mut g = vec![INFINITE; w * hgt];
+    g.par_chunks_mut(w * ROWS).enumerate().for_each_init(
+        || (Envelope::default(), vec![0u64; m]),
+        |(env, line), (block, out)| {
+            for (i, out) in out.chunks_mut(w).enumerate() {
+                let r = block * ROWS + i;
+                for (k, stripe) in stripes.iter().enumerate() {
+                    let c0 = k * STRIPE;
+                    let sw = (w - c0).min(STRIPE);
+                    line[pad + c0..pad + c0 + sw].copy_from_slice(&stripe[r * sw..(r + 1) * sw]);
+                }
+                row_pass(env, line, pad, kernel, out);
+            }
+        },
+    );
+    Grid::from_vec(w, hgt, g).unwrap_or_else(|| Grid::new(w, hgt, INFINITE))
+}
+
+/// The column pass over `cols`: `h` of the distance to the nearest source
+/// in the column (row-major within the stripe). `h` is monotone in |k|,
+/// so the nearest source row gives the minimum; rows are walked in memory
+/// order, every column of the stripe at once.
+fn column_pass(
+    src: &[bool],
+    w: usize,
+    hgt: usize,
+    cols: std::ops::Range<usize>,
+    outside: bool,
+    kernel: Kernel,
+) -> Vec<u64> {
+    let h = |k: i64| kernel.h(k);
+    let sw = cols.len();
+    let mut g = vec![INFINITE; sw * hgt];
     let none = if outside { -1 } else { i64::MIN };
-    let mut last = vec![none; w];
+    let mut last = vec![none; sw];
     for r in 0..hgt {
-        let (row, out) = (&src[r * w..(r + 1) * w], &mut g[r * w..(r + 1) * w]);
-        for c in 0..w {
+        let (row, out) = (
+            &src[r * w + cols.start..r * w + cols.end],
+            &mut g[r * sw..(r + 1) * sw],
+        );
+        for c in 0..sw {
             if row[c] {
                 last[c] = r as i64;
             }
@@ -87,8 +152,11 @@ fn transform(sources: &Grid<bool>, outside: bool, kernel: Kernel) -> Grid<u64> {
     let next = &mut last;
     next.fill(none);
     for r in (0..hgt).rev() {
-        let (row, out) = (&src[r * w..(r + 1) * w], &mut g[r * w..(r + 1) * w]);
-        for c in 0..w {
+        let (row, out) = (
+            &src[r * w + cols.start..r * w + cols.end],
+            &mut g[r * sw..(r + 1) * sw],
+        );
+        for c in 0..sw {
             if row[c] {
                 next[c] = r as i64;
             }
@@ -97,34 +165,29 @@ fn transform(sources: &Grid<bool>, outside: bool, kernel: Kernel) -> Grid<u64> {
             }
         }
     }
-    // Row pass, on lines padded with a wall column each side when the
-    // outside is a source.
-    let mut env = Envelope::default();
-    let pad = usize::from(outside);
-    let m = w + 2 * pad;
-    let mut line = vec![0u64; m];
-    for r in 0..hgt {
-        line[pad..pad + w].copy_from_slice(&g[r * w..(r + 1) * w]);
-        let out = &mut g[r * w..(r + 1) * w];
-        if kernel == Kernel::Boundary {
-            // Edge `i` (doubled coordinate 2i − 1) lies between cells i−1 and i.
-            env.build((0..=m).map(|i| {
-                let left = if i > 0 { line[i - 1] } else { INFINITE };
-                let right = line.get(i).copied().unwrap_or(INFINITE);
-                (2 * i as i64 - 1, left.min(right))
-            }));
-            for (x, o) in out.iter_mut().enumerate() {
-                let xp = x + pad;
-                *o = line[xp].min(env.eval(2 * xp as i64));
-            }
-        } else {
-            env.build(line.iter().enumerate().map(|(q, &v)| (q as i64, v)));
-            for (x, o) in out.iter_mut().enumerate() {
-                *o = env.eval((x + pad) as i64);
-            }
+    g
+}
+
+/// The row pass over one padded `line` of column-pass values, into `out`.
+fn row_pass(env: &mut Envelope, line: &[u64], pad: usize, kernel: Kernel, out: &mut [u64]) {
+    let m = line.len();
+    if kernel == Kernel::Boundary {
+        // Edge `i` (doubled coordinate 2i − 1) lies between cells i−1 and i.
+        env.build((0..=m).map(|i| {
+            let left = if i > 0 { line[i - 1] } else { INFINITE };
+            let right = line.get(i).copied().unwrap_or(INFINITE);
+            (2 * i as i64 - 1, left.min(right))
+        }));
+        for (x, o) in out.iter_mut().enumerate() {
+            let xp = x + pad;
+            *o = line[xp].min(env.eval(2 * xp as i64));
+        }
+    } else {
+        env.build(line.iter().enumerate().map(|(q, &v)| (q as i64, v)));
+        for (x, o) in out.iter_mut().enumerate() {
+            *o = env.eval((x + pad) as i64);
         }
     }
-    Grid::from_vec(w, hgt, g).unwrap_or_else(|| Grid::new(w, hgt, INFINITE))
 }
 
 /// Lower envelope of the parabolas `v + (x − c)²` of one line.
@@ -242,6 +305,60 @@ mod tests {
             );
         }
         assert_eq!(center_distance_sq(&sources), brute(&sources, false, false));
+    }
+
+    /// Brute force over a list of sources (and the frame round the grid
+    /// when the outside is a source).
+    fn sparse_brute(sources: &Grid<bool>, outside: bool, boundary: bool) -> Grid<u64> {
+        let h = |k: i64| -> u64 {
+            let k = k.unsigned_abs();
+            if boundary {
+                (2 * k).saturating_sub(1).pow(2)
+            } else {
+                k * k
+            }
+        };
+        let (w, hh) = (sources.width() as i64, sources.height() as i64);
+        let mut list: Vec<(i64, i64)> = sources
+            .true_cells()
+            .map(|c| (c.row as i64, c.col as i64))
+            .collect();
+        if outside {
+            list.extend((-1..=w).flat_map(|c| [(-1, c), (hh, c)]));
+            list.extend((0..hh).flat_map(|r| [(r, -1), (r, w)]));
+        }
+        Grid::from_fn(sources.width(), sources.height(), |c| {
+            list.iter()
+                .map(|&(r, col)| h(c.row as i64 - r) + h(c.col as i64 - col))
+                .min()
+                .unwrap_or(INFINITE)
+        })
+    }
+
+    /// A grid of several column stripes and row blocks (the passes' tasks).
+    #[test]
+    fn matches_brute_force_across_stripes_and_row_blocks() {
+        let (w, h) = (2 * STRIPE + 37, 2 * ROWS + 5);
+        let mut s = 11u64;
+        let sources = Grid::from_fn(w, h, |_| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 33) % 500 == 0
+        });
+        assert!(sources.count_true() > 10);
+        for outside in [false, true] {
+            assert_eq!(
+                boundary_distance_sq4(&sources, outside),
+                sparse_brute(&sources, outside, true)
+            );
+        }
+        assert_eq!(
+            center_distance_sq(&sources),
+            sparse_brute(&sources, false, false)
+        );
+        let none = Grid::new(w, h, false);
+        assert_eq!(center_distance_sq(&none), Grid::new(w, h, INFINITE));
     }
 
     #[test]
