@@ -284,8 +284,11 @@ fn flood(labels: &mut Grid<u32>, start: Cell, label: u32, inside: impl Fn(Cell) 
 /// `next` on (each grown breadth first); returns the next unused label.
 pub(crate) fn label_the_rest(free: &Grid<bool>, labels: &mut Grid<u32>, mut next: u32) -> u32 {
     let mut queue = VecDeque::new();
-    for c in free.true_cells() {
-        if labels[c] == 0 {
+    let w = free.width();
+    // By index to the unlabelled free cells (this reads every cell).
+    for i in 0..free.len() {
+        if free.as_slice()[i] && labels.as_slice()[i] == 0 {
+            let c = Cell::new(i / w, i % w);
             labels[c] = next;
             next += 1;
             queue.push_back(c);
@@ -378,10 +381,9 @@ pub fn merge_small_regions(labels: &mut Grid<u32>, min_cells: f64) {
             }
         }
     }
-    for c in labels.cells() {
-        let l = labels[c];
-        if l != 0 {
-            labels[c] = find(&parent, l);
+    for l in labels.as_mut_slice() {
+        if *l != 0 {
+            *l = find(&parent, *l);
         }
     }
 }

@@ -182,11 +182,11 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     // free regions (isolated specks no door joins), each in row-major order
     // of first cells.
     // Labels are small integers: per-label tables are plain vectors.
-    let top = labels.cells().map(|c| labels[c]).max().unwrap_or(0) as usize;
+    // By index: these passes read every cell.
+    let top = labels.as_slice().iter().copied().max().unwrap_or(0) as usize;
     let mut size = vec![0usize; top + 1];
     let mut first: Vec<u32> = Vec::new();
-    for c in labels.cells() {
-        let l = labels[c];
+    for &l in labels.as_slice() {
         if l != 0 {
             if size[l as usize] == 0 {
                 first.push(l);
@@ -207,12 +207,11 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
         fresh[l as usize] = i as u32 + 1;
     }
     let mut areas = vec![0usize; order.len()];
-    for c in labels.cells() {
-        let l = labels[c];
-        if l != 0 {
-            let id = fresh[l as usize];
+    for l in labels.as_mut_slice() {
+        if *l != 0 {
+            let id = fresh[*l as usize];
             areas[id as usize - 1] += 1;
-            labels[c] = id;
+            *l = id;
         }
     }
     let doors = doors(&labels);
