@@ -273,7 +273,6 @@ pub fn unit_exits(
     order: &[u32],
 ) -> Vec<Option<Cell>> {
     let plannable = problem.plannable();
-    let mut wave = Wavefront::new(plannable);
     // Each unit's cells, gathered in one scan.
     let mut cells_of: Vec<Vec<Cell>> = vec![Vec::new(); units.count() + 1];
     for c in units.labels.cells() {
@@ -281,13 +280,20 @@ pub fn unit_exits(
             v.push(c);
         }
     }
-    let mut exits = Vec::with_capacity(order.len());
-    for w in order.windows(2) {
-        let (here, next) = (w[0], w[1]);
-        let sources = cells_of.get(next as usize).map_or(&[][..], Vec::as_slice);
-        let found = cidt(&mut wave, sources, |c| units.labels[c] == here);
-        exits.push(found.map(|f| f.first()));
-    }
+    // Each step of the order on its own (in parallel, each search with its
+    // own wavefront; in the order's order whatever the thread count).
+    let mut exits: Vec<Option<Cell>> = order
+        .par_windows(2)
+        .map_init(
+            || Wavefront::new(plannable),
+            |wave, w| {
+                let (here, next) = (w[0], w[1]);
+                let sources = cells_of.get(next as usize).map_or(&[][..], Vec::as_slice);
+                let found = cidt(wave, sources, |c| units.labels[c] == here);
+                found.map(|f| f.first())
+            },
+        )
+        .collect();
     exits.push(None);
     exits
 }
