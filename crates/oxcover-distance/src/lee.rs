@@ -322,6 +322,37 @@ impl Wavefront {
         self.tail = tail;
     }
 
+    /// Like [`Wavefront::propagate`] but stops after the first layer by which
+    /// every passable in-grid cell of `targets` is labelled (their distances,
+    /// and those of every cell labelled so far, are final; targets no source
+    /// reaches stay unlabelled). Returns the number of cells labelled.
+    pub fn propagate_until_reached(&mut self, sources: &[Cell], targets: &[Cell]) -> usize {
+        let mut wanted = vec![false; self.labels.len()];
+        let mut left = 0usize;
+        for &t in targets {
+            if self.inside(t) {
+                let i = self.pad(t);
+                if self.labels[i] != BLOCKED && !wanted[i] {
+                    wanted[i] = true;
+                    left += 1;
+                }
+            }
+        }
+        if left == 0 {
+            self.seed(&[]);
+            return 0;
+        }
+        self.run(sources, u32::MAX, |layer, _| {
+            for &i in layer.cells {
+                if std::mem::take(&mut wanted[i as usize]) {
+                    left -= 1;
+                }
+            }
+            left == 0
+        });
+        self.tail
+    }
+
     /// Core BFS by layers. After each completed layer of distance `d`,
     /// `on_layer(layer, d)` sees that layer's cells and may stop the wave by
     /// returning `true`. Distance-0 sources are the first layer; sources that are
@@ -522,6 +553,28 @@ mod tests {
                     prop_assert_eq!(p[0], src);
                     prop_assert!(p.windows(2).all(|s| s[0].manhattan(s[1]) == 1 && free[s[1]]));
                 }
+            }
+        }
+
+        /// A search that stops once its targets are reached gives them (and
+        /// every cell it labelled) the full search's distances, and labels
+        /// no more cells than it.
+        #[test]
+        fn stopping_at_the_targets_keeps_their_distances(w in 1usize..40, h in 1usize..40, density in 0.0f64..0.5, seed in any::<u64>(), at in any::<u64>(), k in 0usize..6) {
+            let free = random_density(w, h, density, seed).free_mask();
+            let cell = |x: u64| Cell::new((x % h as u64) as usize, ((x / 97) % w as u64) as usize);
+            let src = cell(at);
+            let targets: Vec<Cell> = (1..=k as u64).map(|t| cell(at.wrapping_mul(31).wrapping_add(t * 7919))).collect();
+            let mut full = Wavefront::new(&free);
+            let all = full.propagate(&[src]);
+            let mut part = Wavefront::new(&free);
+            let some = part.propagate_until_reached(&[src], &targets);
+            prop_assert!(some <= all);
+            for &t in &targets {
+                prop_assert_eq!(part.distance(t), full.distance(t));
+            }
+            for c in part.touched_cells() {
+                prop_assert_eq!(part.distance(c), full.distance(c));
             }
         }
     }

@@ -1370,6 +1370,52 @@ struct Transits {
     turn_rate: f64,
 }
 
+/// Detour ratios between the blocks `at` (row-major, `n × n`): the
+/// search's distance over the Manhattan distance, `1e6` where no way
+/// exists, 1 where a point has no block or two share one. The distances
+/// are symmetric (every move of the wavefront goes both ways), so the
+/// search from point `i` fills row and column `i` and stops once it has
+/// reached the points after `i`; the searches run side by side, each task
+/// with its own copy of `wave`.
+fn ratio_table(at: &[Option<Cell>], wave: &Wavefront) -> Vec<f32> {
+    let n = at.len();
+    let rows: Vec<Vec<(usize, f32)>> = (0..n)
+        .into_par_iter()
+        .map_init(
+            || wave.clone(),
+            |wave, i| {
+                let Some(a) = at[i] else {
+                    return Vec::new();
+                };
+                let later: Vec<Cell> = at[i + 1..].iter().flatten().copied().collect();
+                wave.propagate_until_reached(&[a], &later);
+                let mut row = Vec::new();
+                for (j, b) in at.iter().enumerate().skip(i + 1) {
+                    let Some(b) = *b else { continue };
+                    let manhattan = a.row.abs_diff(b.row) + a.col.abs_diff(b.col);
+                    if manhattan == 0 {
+                        continue;
+                    }
+                    let r = match wave.distance(b) {
+                        Some(d) => (f64::from(d) / manhattan as f64) as f32,
+                        None => 1e6,
+                    };
+                    row.push((j, r));
+                }
+                row
+            },
+        )
+        .collect();
+    let mut r = vec![1.0f32; n * n];
+    for (i, row) in rows.into_iter().enumerate() {
+        for (j, v) in row {
+            r[i * n + j] = v;
+            r[j * n + i] = v;
+        }
+    }
+    r
+}
+
 /// The region the transit table searches, in square blocks of cells, with
 /// a wavefront over the blocks to reuse (made when first needed).
 struct Region<'a> {
@@ -1517,33 +1563,16 @@ impl Transits {
             .collect();
         let n = points.len();
         let cells = region.cells as f64;
-        let ratio = (n as f64 * cells <= TRANSIT_BUDGET && n * n <= 16_000_000).then(|| {
-            let at: Vec<Option<Cell>> = points.iter().map(|&p| region.block_of(p)).collect();
-            if region.wave.is_none() {
-                region.wave = Some(region.wavefront());
-            }
-            let Some(wave) = region.wave.as_mut() else {
-                return vec![1.0f32; n * n];
-            };
-            let mut r = vec![1.0f32; n * n];
-            for i in 0..n {
-                let Some(a) = at[i] else { continue };
-                wave.reset();
-                wave.propagate(&[a]);
-                for j in 0..n {
-                    let Some(b) = at[j] else { continue };
-                    let manhattan = a.row.abs_diff(b.row) + a.col.abs_diff(b.col);
-                    if manhattan == 0 {
-                        continue;
-                    }
-                    r[i * n + j] = match wave.distance(b) {
-                        Some(d) => (f64::from(d) / manhattan as f64) as f32,
-                        None => 1e6,
-                    };
+        let ratio = (n as f64 * cells <= TRANSIT_BUDGET && n * n <= 16_000_000)
+            .then(|| {
+                let at: Vec<Option<Cell>> = points.iter().map(|&p| region.block_of(p)).collect();
+                if region.wave.is_none() {
+                    region.wave = Some(region.wavefront());
                 }
-            }
-            r
-        });
+                let wave = region.wave.as_ref()?;
+                Some(ratio_table(&at, wave))
+            })
+            .flatten();
         let headings = nodes
             .iter()
             .map(|n| (0..n.options()).map(|k| n.headings(k)).collect())
@@ -1959,6 +1988,35 @@ mod tests {
 
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig::with_cases(40))]
+        /// The symmetric table (each search stopped at the points after its
+        /// own) equals one full search from every point, on cells and on
+        /// blocks.
+        #[test]
+        fn the_ratio_table_is_every_search_in_full(seed in 0u64..1000, blobs in 1usize..10, block in 1usize..4, picks in proptest::collection::vec((0usize..47, 0usize..61), 0..24)) {
+            let plannable = oxcover_grid::random::blobs(61, 47, blobs, 6, seed).free_mask();
+            let region = Region::with_block(&plannable, block);
+            let wave = region.wavefront();
+            let at: Vec<Option<Cell>> = picks
+                .iter()
+                .map(|&(r, c)| region.block_of(cell_center(Cell::new(r, c))))
+                .collect();
+            let n = at.len();
+            let mut full = vec![1.0f32; n * n];
+            let mut w = wave.clone();
+            for i in 0..n {
+                let Some(a) = at[i] else { continue };
+                w.propagate(&[a]);
+                for j in 0..n {
+                    let Some(b) = at[j] else { continue };
+                    let manhattan = a.row.abs_diff(b.row) + a.col.abs_diff(b.col);
+                    if manhattan > 0 {
+                        full[i * n + j] = w.distance(b).map_or(1e6, |d| (f64::from(d) / manhattan as f64) as f32);
+                    }
+                }
+            }
+            proptest::prop_assert_eq!(ratio_table(&at, &wave), full);
+        }
+
         /// Lines that skip the samples within the lane mask's clearance
         /// find the same chains as lines sampled all along.
         #[test]
