@@ -10,7 +10,8 @@
 //! - [`io`]: ROS map_server yaml + PGM (P2/P5, 8/16 bit) / PNG / BMP, plain
 //!   images, MovingAI `.map`, an ASCII test format; a PGM+yaml writer.
 //! - [`admissible()`], [`edt`]: cells a disc robot may occupy, from an exact
-//!   Euclidean distance transform.
+//!   Euclidean distance transform (its passes run in parallel; the values
+//!   do not depend on the thread count).
 //! - [`contour`]: iso-contours of a field over the grid (marching squares).
 //! - [`components`], [`Coverability`]: reachable and coverable cells for a
 //!   robot, a tool and a start.
