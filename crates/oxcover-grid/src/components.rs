@@ -1,6 +1,7 @@
 //! 4-connected components and the reachable set from a start.
 //!
-//! Scan-order flood fill with an explicit stack: O(cells), no recursion, labels
+//! Scan-order flood fill with an explicit stack of row runs (each run filled
+//! at once, one seed per run beside it): O(cells), no recursion, labels
 //! numbered in row-major order of each component's first cell.
 
 use crate::grid::{Cell, Grid};
@@ -21,6 +22,13 @@ impl Components {
         self.sizes.len()
     }
 
+    /// The first cell (row-major) of component `label`, if it has one.
+    #[must_use]
+    pub fn first_cell(&self, label: u32) -> Option<Cell> {
+        let i = self.labels.as_slice().iter().position(|&l| l == label)?;
+        Some(self.labels.cell_of(i))
+    }
+
     /// The 1-based label of the largest component (first on ties), if any.
     #[must_use]
     pub fn largest(&self) -> Option<u32> {
@@ -39,56 +47,22 @@ impl Components {
 /// at a time: this reads every cell).
 #[must_use]
 pub fn components4(mask: &Grid<bool>) -> Components {
-    let (w, h, set) = (mask.width(), mask.height(), mask.as_slice());
-    let mut labels = Grid::new(w, h, 0u32);
-    let ids = labels.as_mut_slice();
+    let mut labels = Grid::new(mask.width(), mask.height(), 0u32);
     let mut sizes = Vec::new();
-    // Seeds of runs to fill: (row, column).
-    let mut stack: Vec<(usize, usize)> = Vec::new();
-    for start in 0..set.len() {
-        if !set[start] || ids[start] != 0 {
+    let mut stack = Vec::new();
+    for start in 0..mask.len() {
+        if !mask.as_slice()[start] || labels.as_slice()[start] != 0 {
             continue;
         }
         let label = sizes.len() as u32 + 1;
-        let mut size = 0;
-        stack.push((start / w, start % w));
-        while let Some((r, c)) = stack.pop() {
-            let row = r * w;
-            if ids[row + c] != 0 {
-                continue;
-            }
-            // The seed's whole run of unlabelled cells along its row.
-            let open = |k: usize| set[row + k] && ids[row + k] == 0;
-            let (mut a, mut b) = (c, c);
-            while a > 0 && open(a - 1) {
-                a -= 1;
-            }
-            while b + 1 < w && open(b + 1) {
-                b += 1;
-            }
-            ids[row + a..=row + b].fill(label);
-            size += b - a + 1;
-            // One seed per run of unlabelled cells beside it, above and below.
-            for next in [r.checked_sub(1), Some(r + 1).filter(|&n| n < h)]
-                .into_iter()
-                .flatten()
-            {
-                let nrow = next * w;
-                let open = |k: usize| set[nrow + k] && ids[nrow + k] == 0;
-                let mut k = a;
-                while k <= b {
-                    if open(k) {
-                        stack.push((next, k));
-                        while k <= b && open(k) {
-                            k += 1;
-                        }
-                    } else {
-                        k += 1;
-                    }
-                }
-            }
-        }
-        sizes.push(size);
+        sizes.push(fill_runs(
+            mask,
+            start,
+            labels.as_mut_slice(),
+            0,
+            label,
+            &mut stack,
+        ));
     }
     Components { labels, sizes }
 }
@@ -97,29 +71,73 @@ pub fn components4(mask: &Grid<bool>) -> Components {
 #[must_use]
 pub fn reachable(mask: &Grid<bool>, start: Cell) -> Grid<bool> {
     let mut out = Grid::new(mask.width(), mask.height(), false);
-    if !mask.is_set(start) {
-        return out;
+    if mask.is_set(start) {
+        let first = mask.index_of(start);
+        fill_runs(
+            mask,
+            first,
+            out.as_mut_slice(),
+            false,
+            true,
+            &mut Vec::new(),
+        );
     }
-    // By index (this may visit every cell of the map).
-    let (w, set) = (mask.width(), mask.as_slice());
-    let seen = out.as_mut_slice();
-    let first = start.row * w + start.col;
-    seen[first] = true;
-    let mut stack = vec![first];
-    while let Some(i) = stack.pop() {
-        let col = i % w;
-        let west = (col > 0).then(|| i - 1);
-        let east = (col + 1 < w).then_some(i + 1);
-        let north = i.checked_sub(w);
-        let south = Some(i + w).filter(|&n| n < set.len());
-        for n in [north, west, east, south].into_iter().flatten() {
-            if set[n] && !seen[n] {
-                seen[n] = true;
-                stack.push(n);
+    out
+}
+
+/// Sets to `value` every cell of `ids` (row-major, `mask`'s size) that is
+/// 4-connected to the set cell `start` through set cells of `mask` whose
+/// `ids` are `blank`, a row's run at a time (one seed per run beside a
+/// filled one, above and below; `stack` is scratch). Returns how many
+/// cells it set.
+fn fill_runs<T: Copy + PartialEq>(
+    mask: &Grid<bool>,
+    start: usize,
+    ids: &mut [T],
+    blank: T,
+    value: T,
+    stack: &mut Vec<(usize, usize)>,
+) -> usize {
+    let (w, h, set) = (mask.width(), mask.height(), mask.as_slice());
+    let mut size = 0;
+    stack.clear();
+    stack.push((start / w, start % w));
+    while let Some((r, c)) = stack.pop() {
+        let row = r * w;
+        if ids[row + c] != blank {
+            continue;
+        }
+        // The seed's whole run of blank cells along its row.
+        let open = |k: usize| set[row + k] && ids[row + k] == blank;
+        let (mut a, mut b) = (c, c);
+        while a > 0 && open(a - 1) {
+            a -= 1;
+        }
+        while b + 1 < w && open(b + 1) {
+            b += 1;
+        }
+        ids[row + a..=row + b].fill(value);
+        size += b - a + 1;
+        for next in [r.checked_sub(1), Some(r + 1).filter(|&n| n < h)]
+            .into_iter()
+            .flatten()
+        {
+            let nrow = next * w;
+            let open = |k: usize| set[nrow + k] && ids[nrow + k] == blank;
+            let mut k = a;
+            while k <= b {
+                if open(k) {
+                    stack.push((next, k));
+                    while k <= b && open(k) {
+                        k += 1;
+                    }
+                } else {
+                    k += 1;
+                }
             }
         }
     }
-    out
+    size
 }
 
 #[cfg(test)]
@@ -139,6 +157,9 @@ mod tests {
         let c = components4(&m.free_mask());
         assert_eq!(c.sizes, vec![2, 4, 1]);
         assert_eq!(c.largest(), Some(2));
+        assert_eq!(c.first_cell(2), Some(Cell::new(0, 3)));
+        assert_eq!(c.first_cell(3), Some(Cell::new(2, 0)));
+        assert_eq!(c.first_cell(4), None);
         let r = reachable(&m.free_mask(), Cell::new(0, 3));
         assert_eq!(r.count_true(), 4);
         assert_eq!(reachable(&m.free_mask(), Cell::new(1, 0)).count_true(), 0);

@@ -162,9 +162,7 @@ impl Coverability {
             robot_radius: robot.robot_radius,
         };
         let big = regions.largest().ok_or(no_cell)?;
-        let labels = regions.labels.as_slice();
-        let first = labels.iter().position(|&l| l == big).unwrap_or_default();
-        let start = Cell::new(first / map.width(), first % map.width());
+        let start = regions.first_cell(big).unwrap_or_default();
         let reachable = regions.labels.map(|&l| l == big);
         Ok(Self::with_reachable(
             map, robot, admissible, start, reachable,

@@ -73,8 +73,7 @@ pub fn largest_region_start(map: &OccupancyGrid, robot_radius: f64) -> Option<Ce
 #[must_use]
 pub fn largest_region_cell(mask: &Grid<bool>) -> Option<Cell> {
     let comps = components4(mask);
-    let big = comps.largest()?;
-    mask.true_cells().find(|&c| comps.labels[c] == big)
+    comps.first_cell(comps.largest()?)
 }
 
 /// Coverage-cell side in fine cells for a tool radius: one tool diameter,
