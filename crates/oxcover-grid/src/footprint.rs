@@ -30,8 +30,11 @@ pub fn for_each_sample(points: &[Point], step: f64, mut f: impl FnMut(&Point)) {
     }
 }
 
-/// How many equal parts the sampler splits the segment `a → b` into.
-fn sample_parts(a: Point, b: Point, step: f64) -> usize {
+/// How many equal parts [`for_each_sample`] splits the segment `a → b`
+/// into (at most `step` long): its samples are `a + (b − a)·i/n` for
+/// `i` in `1..=n`.
+#[must_use]
+pub fn sample_parts(a: Point, b: Point, step: f64) -> usize {
     let len = (b - a).norm();
     // The tolerance keeps a segment of exactly m·step from getting an extra
     // sample through rounding, so samples of grid-aligned paths fall on the

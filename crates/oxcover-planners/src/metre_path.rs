@@ -14,6 +14,7 @@
 //! walls, inner strips where offsets vanish).
 
 use oxcover_distance::{AStar, Wavefront, cidt};
+use oxcover_grid::footprint::sample_parts;
 use oxcover_grid::math::fast_floor;
 use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear, segment_distance};
 use oxcover_grid::{Cell, CoarseGrid, Grid, MapFrame, Point};
@@ -400,51 +401,133 @@ pub(crate) fn point_clearance(mask: &Grid<bool>, p: GridPoint, clearance: f64) -
     true
 }
 
-/// Clears `wanted` at representatives within `radius` of a sample of the
-/// polyline `points`.
+/// Clears `wanted` at every coverage-cell representative within `radius`
+/// cells of a sample of the polyline `points`, looking at the blocks round
+/// each sample's own ([`near_samples`] is the sample-by-sample
+/// definition).
 ///
 /// The samples are the contract's (`oxcover_grid::footprint`): each segment
 /// split into `ceil(len / ¼)` equal parts, waypoints included, so a
 /// representative marked here is one the metrics count as covered. (An exact
 /// point-to-segment distance would also mark representatives that lie within
 /// the radius of the segment but of no sample, which the metrics then miss.)
+///
+/// Segment by segment: a representative within `radius` of a sample lies
+/// within `radius` of the segment, so each piece of a segment (about
+/// `2·radius` of samples) looks at the blocks its box, grown by `radius`,
+/// touches, and tests a wanted representative against the samples
+/// nearest its foot on the segment only (the nearest is within one of the
+/// foot's rounding; a farther sample is farther by at least a sample's
+/// spacing). Where `radius` exceeds a block, the blocks round a sample
+/// are not all those within reach, and every sample is visited as
+/// defined.
 fn mark_near(coarse: &CoarseGrid, points: &[GridPoint], radius: f64, wanted: &mut Grid<bool>) {
-    let reps = coarse.representatives();
     let k = coarse.block_size() as f64;
-    // A block whose cells all lie more than `radius` beyond `p` in one
-    // axis holds no representative within reach: of the 3 × 3 blocks
-    // round `p`'s, only those whose extent comes within `radius` of it
-    // (a representative is a cell centre, half a cell inside its block).
-    let blocks = |x: f64| {
-        let b = fast_floor(x / k) as i64;
-        let lo = fast_floor((x - radius) / k) as i64;
-        let hi = fast_floor((x + radius) / k) as i64;
-        lo.max(b - 1)..=hi.min(b + 1)
+    let Some(&first) = points.first() else {
+        return;
     };
-    let visit = |p: GridPoint| {
-        for r in blocks(p.y) {
-            for c in blocks(p.x) {
-                if r < 0 || c < 0 {
-                    continue;
-                }
-                let Some(Some(rep)) = reps.get(Cell::new(r as usize, c as usize)) else {
-                    continue;
-                };
-                if !wanted[*rep] {
-                    continue;
-                }
-                let (x, y) = {
-                    let c = cell_center(*rep);
-                    (c.x, c.y)
-                };
-                let (dx, dy) = (x - p.x, y - p.y);
-                if dx * dx + dy * dy <= radius * radius {
-                    wanted[*rep] = false;
-                }
-            }
+    if radius > k || !radius.is_finite() {
+        near_samples(coarse, points, radius, |rep| wanted[rep] = false);
+        return;
+    }
+    let reps = coarse.representatives();
+    let reached = |p: GridPoint, r: i64, c: i64, q: GridPoint| {
+        block_range(p.y, k, radius).contains(&r) && block_range(p.x, k, radius).contains(&c) && {
+            let (dx, dy) = (q.x - p.x, q.y - p.y);
+            dx * dx + dy * dy <= radius * radius
         }
     };
-    for_each_contract_sample(points, visit);
+    visit_near(coarse, first, radius, |rep| wanted[rep] = false);
+    for w in points.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let n = sample_parts(a, b, SAMPLE_STEP);
+        let sample = |i: usize| a + (b - a) * (i as f64 / n as f64);
+        let d = b - a;
+        let len2 = d.norm_squared();
+        if n <= 2 || !len2.is_finite() {
+            for i in 1..=n {
+                visit_near(coarse, sample(i), radius, |rep| wanted[rep] = false);
+            }
+            continue;
+        }
+        // The sample nearest the foot of `q`, either side of it.
+        let nearest = |q: GridPoint| {
+            let t = ((q - a).dot(&d) / len2).clamp(0.0, 1.0);
+            let i = (t * n as f64).round() as usize;
+            i.saturating_sub(1).max(1)..=(i + 1).min(n)
+        };
+        let per_piece = ((2.0 * radius) / (len2.sqrt() / n as f64)).floor().max(1.0) as usize;
+        let mut k0 = 0;
+        while k0 < n {
+            let k1 = (k0 + per_piece).min(n);
+            let (p, q) = (sample(k0), sample(k1));
+            let rows = blocks_between(p.y.min(q.y) - radius, p.y.max(q.y) + radius, k);
+            let cols = blocks_between(p.x.min(q.x) - radius, p.x.max(q.x) + radius, k);
+            for r in rows {
+                for c in cols.clone() {
+                    let Some(Some(rep)) = reps.get(Cell::new(r as usize, c as usize)) else {
+                        continue;
+                    };
+                    if !wanted[*rep] {
+                        continue;
+                    }
+                    let at = cell_center(*rep);
+                    if nearest(at).any(|i| reached(sample(i), r, c, at)) {
+                        wanted[*rep] = false;
+                    }
+                }
+            }
+            k0 = k1;
+        }
+    }
+}
+
+/// The contract's sample spacing, in cells.
+const SAMPLE_STEP: f64 = 0.25;
+
+/// The blocks (of side `k`) from the one holding `lo` to the one holding
+/// `hi`, none below 0.
+fn blocks_between(lo: f64, hi: f64, k: f64) -> std::ops::RangeInclusive<i64> {
+    (fast_floor(lo / k) as i64).max(0)..=fast_floor(hi / k) as i64
+}
+
+/// The blocks (of side `k`) along one axis that a sample at `x` looks at:
+/// its own and its neighbours, as far as they come within `radius` of it
+/// (a representative is a cell centre, half a cell inside its block).
+fn block_range(x: f64, k: f64, radius: f64) -> std::ops::RangeInclusive<i64> {
+    let b = fast_floor(x / k) as i64;
+    let lo = fast_floor((x - radius) / k) as i64;
+    let hi = fast_floor((x + radius) / k) as i64;
+    lo.max(b - 1)..=hi.min(b + 1)
+}
+
+/// Calls `f` on every representative within `radius` of `p` among the
+/// blocks round `p`'s ([`block_range`]).
+fn visit_near(coarse: &CoarseGrid, p: GridPoint, radius: f64, mut f: impl FnMut(Cell)) {
+    let reps = coarse.representatives();
+    let k = coarse.block_size() as f64;
+    for r in block_range(p.y, k, radius) {
+        for c in block_range(p.x, k, radius) {
+            if r < 0 || c < 0 {
+                continue;
+            }
+            let Some(Some(rep)) = reps.get(Cell::new(r as usize, c as usize)) else {
+                continue;
+            };
+            let q = cell_center(*rep);
+            let (dx, dy) = (q.x - p.x, q.y - p.y);
+            if dx * dx + dy * dy <= radius * radius {
+                f(*rep);
+            }
+        }
+    }
+}
+
+/// The definition [`mark_near`] follows: `f` on every representative
+/// within `radius` of a contract sample of `points`, among the blocks
+/// round the sample's own, sample by sample.
+fn near_samples(coarse: &CoarseGrid, points: &[GridPoint], radius: f64, mut f: impl FnMut(Cell)) {
+    for_each_contract_sample(points, |p| visit_near(coarse, p, radius, &mut f));
 }
 
 /// Calls `f` on the contract's samples of the polyline `points` (grid
@@ -517,6 +600,40 @@ mod tests {
             }
             let b = GridPoint::new(a.x + d.0, a.y + d.1);
             proptest::prop_assert_eq!(fast.segment(a, b), segment_clearance(&m, a, b, c));
+        }
+    }
+
+    proptest::proptest! {
+        /// Segment by segment, the same representatives as sample by
+        /// sample: long and short segments at any angle, on cell borders
+        /// and of no length, with a radius within a block and beyond.
+        #[test]
+        fn marking_by_segment_is_marking_by_sample(
+            seed in proptest::prelude::any::<u64>(),
+            block in 1usize..7,
+            radius in 0.1..8.0f64,
+            pts in proptest::collection::vec((0usize..4, 0.0..40.0f64, 0.0..30.0f64), 1..12),
+        ) {
+            let map = oxcover_grid::random::random_density(40, 30, 0.2, seed);
+            let coarse = CoarseGrid::new(&map.free_mask(), block);
+            let mut points: Vec<GridPoint> = Vec::new();
+            for (kind, x, y) in pts {
+                let p = match (kind, points.last()) {
+                    // Snapped to a cell border or centre.
+                    (0, _) => GridPoint::new(x.round(), y.round()),
+                    (1, _) => GridPoint::new(x.floor() + 0.5, y.floor() + 0.5),
+                    // The same point again, or a hair away.
+                    (2, Some(&q)) => GridPoint::new(q.x, q.y + (x - 20.0) * 1e-3),
+                    _ => GridPoint::new(x, y),
+                };
+                points.push(p);
+            }
+            let (w, h) = (40, 30);
+            let mut fast = Grid::new(w, h, true);
+            mark_near(&coarse, &points, radius, &mut fast);
+            let mut plain = Grid::new(w, h, true);
+            near_samples(&coarse, &points, radius, |rep| plain[rep] = false);
+            proptest::prop_assert_eq!(fast, plain);
         }
     }
 
