@@ -8,7 +8,7 @@
 //! multiple of the resolution in decimal (0.15 m on 0.05 m cells) behaves as the
 //! user means despite binary rounding.
 
-use crate::edt::boundary_distance_sq4;
+use crate::edt::{boundary_distance_sq4, boundary_within_sq4};
 use crate::grid::Grid;
 use crate::occupancy::OccupancyGrid;
 
@@ -25,11 +25,12 @@ pub fn admissible(map: &OccupancyGrid, robot_radius: f64) -> Grid<bool> {
         return free;
     }
     let blocked = free.map(|f| !f);
-    let d4 = boundary_distance_sq4(&blocked, true);
-    // sqrt(d4)/2 >= r - tol  <=>  d4 >= (2(r - tol))^2
+    // sqrt(d4)/2 >= r - tol  <=>  d4 >= (2(r - tol))^2, for an integer d4
+    // at least its ceiling: not within one less.
     let t = 2.0 * (r - TOLERANCE_CELLS);
-    let t2 = t * t;
-    free.zip_map(&d4, |&f, &d| f && d as f64 >= t2)
+    let least = (t * t).ceil();
+    let near = boundary_within_sq4(&blocked, true, least as u64 - 1);
+    free.zip_map(&near, |&f, &n| f && !n)
 }
 
 /// Clearance of every cell in metres: distance from its centre to the nearest

@@ -11,7 +11,7 @@
 
 use crate::admissible::{TOLERANCE_CELLS, admissible};
 use crate::components::{components4, reachable};
-use crate::edt::center_distance_sq;
+use crate::edt::center_within_sq;
 use crate::error::{Error, Result, non_negative, positive};
 use crate::grid::{Cell, Grid};
 use crate::math::Point;
@@ -215,9 +215,9 @@ pub fn coverable_cells(free: &Grid<bool>, centres: &Grid<bool>, tool_cells: f64)
         // Only the centre cells themselves are within reach.
         return Grid::from_fn(free.width(), free.height(), |c| free[c] && centres[c]);
     }
-    let d2 = center_distance_sq(centres);
-    let r2 = reach * reach;
-    free.zip_map(&d2, |&f, &d| f && (d as f64) <= r2)
+    // An integer d² is at most reach² when at most its floor.
+    let near = center_within_sq(centres, (reach * reach).floor() as u64);
+    free.zip_map(&near, |&f, &n| f && n)
 }
 
 #[cfg(test)]

@@ -50,6 +50,158 @@ pub fn center_distance_sq(sources: &Grid<bool>) -> Grid<u64> {
     transform(sources, false, Kernel::Center)
 }
 
+/// `true` where [`boundary_distance_sq4`] is at most `limit`, found
+/// without working out the distances beyond it ([`within`]).
+#[must_use]
+pub fn boundary_within_sq4(
+    sources: &Grid<bool>,
+    outside_is_source: bool,
+    limit: u64,
+) -> Grid<bool> {
+    within(sources, outside_is_source, Kernel::Boundary, limit)
+}
+
+/// `true` where [`center_distance_sq`] is at most `limit`, found without
+/// working out the distances beyond it ([`within`]).
+#[must_use]
+pub fn center_within_sq(sources: &Grid<bool>, limit: u64) -> Grid<bool> {
+    within(sources, false, Kernel::Center, limit)
+}
+
+/// Widest reach (cells along an axis) [`within`] looks at cell by cell;
+/// beyond, the full transform is thresholded.
+const WINDOW_MAX: i64 = 32;
+
+/// Whether the distance (`kernel`'s) to the nearest source is at most
+/// `limit`, cell by cell. A source within the limit is at most `K` cells
+/// away along either axis, `K` the largest `k` with `h(k) ≤ limit`, so the
+/// column pass need only tell distances up to `K` rows, and each cell of
+/// the row pass the least `G(q) + h(x − q)` over the `2K + 1` columns
+/// round it instead of a line's whole envelope (the same sum of a column
+/// and a row term as [`transform`]'s, over fewer columns: where the
+/// nearest source lies within the limit, it lies among them).
+fn within(sources: &Grid<bool>, outside: bool, kernel: Kernel, limit: u64) -> Grid<bool> {
+    let (w, hgt) = (sources.width(), sources.height());
+    let mut reach = 0i64;
+    while reach <= WINDOW_MAX && kernel.h(reach + 1) <= limit {
+        reach += 1;
+    }
+    if reach > WINDOW_MAX {
+        return transform(sources, outside, kernel).map(|&d| d <= limit);
+    }
+    if w == 0 || hgt == 0 {
+        return Grid::new(w, hgt, false);
+    }
+    let src = sources.as_slice();
+    let stripes: Vec<Vec<u32>> = (0..w.div_ceil(STRIPE))
+        .into_par_iter()
+        .map(|k| {
+            capped_column_pass(
+                src,
+                (w, hgt),
+                k * STRIPE..((k + 1) * STRIPE).min(w),
+                outside,
+                (kernel, limit),
+            )
+        })
+        .collect();
+    // `h(j − K)` for the window's offsets `j` in `0..=2K`.
+    let terms: Vec<u64> = (-reach..=reach).map(|k| kernel.h(k)).collect();
+    let pad = reach as usize + 1;
+    let mut out = vec![false; w * hgt];
+    out.par_chunks_mut(w * ROWS).enumerate().for_each_init(
+        || {
+            // Beyond the grid: the frame of outside sources, then nothing.
+            let mut line = vec![u32::MAX; w + 2 * pad];
+            if outside {
+                line[pad - 1] = 0;
+                line[pad + w] = 0;
+            }
+            (line, Vec::new())
+        },
+        |(line, next), (block, out)| {
+            for (i, out) in out.chunks_mut(w).enumerate() {
+                let r = block * ROWS + i;
+                for (k, stripe) in stripes.iter().enumerate() {
+                    let c0 = k * STRIPE;
+                    let sw = (w - c0).min(STRIPE);
+                    line[pad + c0..pad + c0 + sw].copy_from_slice(&stripe[r * sw..(r + 1) * sw]);
+                }
+                // Most cells have no source within the window at all:
+                // the nearest finite value ahead tells (`next`, an index
+                // into `line`, found walking back from the end).
+                next.clear();
+                next.resize(line.len() + 1, usize::MAX);
+                for i in (0..line.len()).rev() {
+                    next[i] = if line[i] == u32::MAX { next[i + 1] } else { i };
+                }
+                for (x, o) in out.iter_mut().enumerate() {
+                    let window = x + 1..x + 2 * pad;
+                    *o = next[window.start] < window.end
+                        && (line[x + pad] == 0
+                            || line[window]
+                                .iter()
+                                .zip(&terms)
+                                .any(|(&g, &t)| u64::from(g) + t <= limit));
+                }
+            }
+        },
+    );
+    Grid::from_vec(w, hgt, out).unwrap_or_else(|| Grid::new(w, hgt, false))
+}
+
+/// [`column_pass`] as far as `limit`: `h` of the distance to the nearest
+/// source in the column where that is at most `limit`, `u32::MAX` where
+/// it is more or there is none.
+fn capped_column_pass(
+    src: &[bool],
+    (w, hgt): (usize, usize),
+    cols: std::ops::Range<usize>,
+    outside: bool,
+    (kernel, limit): (Kernel, u64),
+) -> Vec<u32> {
+    let h = |k: i64| {
+        let v = kernel.h(k);
+        if v <= limit { v as u32 } else { u32::MAX }
+    };
+    let sw = cols.len();
+    let mut g = vec![u32::MAX; sw * hgt];
+    let none = if outside { -1 } else { i64::MIN };
+    let mut last = vec![none; sw];
+    for r in 0..hgt {
+        let (row, out) = (
+            &src[r * w + cols.start..r * w + cols.end],
+            &mut g[r * sw..(r + 1) * sw],
+        );
+        for c in 0..sw {
+            if row[c] {
+                last[c] = r as i64;
+            }
+            if last[c] != i64::MIN {
+                out[c] = h(r as i64 - last[c]);
+            }
+        }
+    }
+    let none = if outside { hgt as i64 } else { i64::MIN };
+    let next = &mut last;
+    next.fill(none);
+    for r in (0..hgt).rev() {
+        let (row, out) = (
+            &src[r * w + cols.start..r * w + cols.end],
+            &mut g[r * sw..(r + 1) * sw],
+        );
+        for c in 0..sw {
+            if row[c] {
+                next[c] = r as i64;
+            }
+            if next[c] != i64::MIN {
+                out[c] = out[c].min(h(next[c] - r as i64));
+            }
+        }
+    }
+    g
+}
+
 /// The per-axis kernel `h`.
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Kernel {
@@ -289,6 +441,45 @@ mod tests {
             });
             prop_assert_eq!(boundary_distance_sq4(&sources, outside), brute(&sources, outside, true));
             prop_assert_eq!(center_distance_sq(&sources), brute(&sources, false, false));
+        }
+    }
+
+    proptest! {
+        /// The thresholded transforms are the full ones compared with the
+        /// limit, for limits within the window and beyond it.
+        #[test]
+        fn within_is_the_transform_thresholded(
+            w in 1usize..40,
+            h in 1usize..40,
+            seed in any::<u64>(),
+            density in 0.0f64..0.3,
+            outside in any::<bool>(),
+            limit in prop_oneof![0u64..200, 4000u64..5000],
+        ) {
+            let sources = crate::random::random_density(w, h, density, seed)
+                .free_mask()
+                .map(|f| !f);
+            let b = boundary_distance_sq4(&sources, outside).map(|&d| d <= limit);
+            prop_assert_eq!(boundary_within_sq4(&sources, outside, limit), b);
+            let c = center_distance_sq(&sources).map(|&d| d <= limit);
+            prop_assert_eq!(center_within_sq(&sources, limit), c);
+        }
+    }
+
+    /// Thresholded across the passes' stripes and row blocks.
+    #[test]
+    fn within_across_stripes_and_row_blocks() {
+        let (w, h) = (2 * STRIPE + 37, 2 * ROWS + 5);
+        let sources = crate::random::random_density(w, h, 0.002, 5)
+            .free_mask()
+            .map(|f| !f);
+        for limit in [0, 1, 9, 37, 144, 400] {
+            for outside in [false, true] {
+                let b = boundary_distance_sq4(&sources, outside).map(|&d| d <= limit);
+                assert_eq!(boundary_within_sq4(&sources, outside, limit), b);
+            }
+            let c = center_distance_sq(&sources).map(|&d| d <= limit);
+            assert_eq!(center_within_sq(&sources, limit), c);
         }
     }
 

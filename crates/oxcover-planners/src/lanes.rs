@@ -86,7 +86,7 @@ use std::sync::OnceLock;
 use rayon::prelude::*;
 
 use oxcover_distance::Wavefront;
-use oxcover_grid::edt::{boundary_distance_sq4, center_distance_sq};
+use oxcover_grid::edt::{boundary_distance_sq4, center_within_sq};
 use oxcover_grid::math::{fast_ceil, fast_floor};
 use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_clear, segment_distance};
 use oxcover_grid::{Cell, Dir4, Grid, Vector};
@@ -418,13 +418,15 @@ fn plan_lanes<'a>(
 /// grid's edge. Walls only: a room cut is no wall, lanes run up to it.
 fn lane_mask(plannable: &Grid<bool>, admissible: &Grid<bool>, tool: f64) -> Grid<bool> {
     let blocked = admissible.map(|&a| !a);
-    let d2 = center_distance_sq(&blocked);
     let inset = 1.0 + tool;
+    // An integer d² is at least inset² when at least its ceiling: not
+    // within one less.
+    let near = center_within_sq(&blocked, (inset * inset).ceil() as u64 - 1);
     let (w, h) = (plannable.width(), plannable.height());
     Grid::from_fn(w, h, |c| {
         // Beyond the grid counts as blocked too.
         let edge = (c.row + 1).min(c.col + 1).min(h - c.row).min(w - c.col) as f64;
-        plannable[c] && (d2[c] as f64) >= inset * inset && edge >= inset
+        plannable[c] && !near[c] && edge >= inset
     })
 }
 
