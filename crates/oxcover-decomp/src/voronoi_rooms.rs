@@ -88,7 +88,7 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
         framed[(c.row + 1) * pw + c.col + 1] = d4[c];
     }
     let steps = LINES.map(|(dr, dc)| dr * pw as isize + dc);
-    let axis = Grid::from_fn(w, h, |c| {
+    let axis = Grid::par_from_fn(w, h, |c| {
         let i = (c.row + 1) * pw + c.col + 1;
         let v = framed[i];
         free[c]
@@ -151,7 +151,7 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     }
     // Regions of the free space minus the cuts (numbered by their first
     // cell in row-major order).
-    let open = Grid::from_fn(w, h, |c| free[c] && !cut[c]);
+    let open = Grid::par_from_fn(w, h, |c| free[c] && !cut[c]);
     let regions = components4(&open);
     let count = regions.count() as u32;
     let mut labels = regions.labels;

@@ -7,6 +7,9 @@
 
 use std::ops::{Index, IndexMut};
 
+/// Rows per task of [`Grid::par_from_fn`] at least.
+const PAR_ROWS: usize = 16;
+
 /// A cell address: `row` counts down from the top row, `col` to the right.
 ///
 /// The derived ordering is row-major, the order every tie-break in the
@@ -201,6 +204,35 @@ impl<T> Grid<T> {
             height,
             data,
         })
+    }
+
+    /// [`Grid::from_fn`] with the rows in parallel (rayon), for grids
+    /// large enough that a pass over them counts: the same grid whatever
+    /// the thread count.
+    #[must_use]
+    pub fn par_from_fn(width: usize, height: usize, f: impl Fn(Cell) -> T + Sync) -> Self
+    where
+        T: Send + Clone + Default,
+    {
+        use rayon::prelude::*;
+        let mut data = vec![T::default(); width * height];
+        if width > 0 {
+            data.par_chunks_mut(width * PAR_ROWS)
+                .enumerate()
+                .for_each(|(block, rows)| {
+                    for (i, row) in rows.chunks_mut(width).enumerate() {
+                        let r = block * PAR_ROWS + i;
+                        for (col, v) in row.iter_mut().enumerate() {
+                            *v = f(Cell::new(r, col));
+                        }
+                    }
+                });
+        }
+        Self {
+            width,
+            height,
+            data,
+        }
     }
 
     /// A grid whose cell values are `f(cell)`.
@@ -427,6 +459,24 @@ impl<T> IndexMut<Cell> for Grid<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn par_from_fn_is_from_fn() {
+        let f = |c: Cell| c.row * 1000 + c.col;
+        for (w, h) in [
+            (0, 5),
+            (5, 0),
+            (1, 1),
+            (7, PAR_ROWS - 1),
+            (13, 3 * PAR_ROWS + 5),
+        ] {
+            assert_eq!(
+                Grid::par_from_fn(w, h, f),
+                Grid::from_fn(w, h, f),
+                "{w} × {h}"
+            );
+        }
+    }
 
     #[test]
     fn neighbours_stay_inside_and_follow_order() {
