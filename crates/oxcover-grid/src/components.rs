@@ -56,11 +56,45 @@ pub fn components4(mask: &Grid<bool>) -> Components {
         }
         let label = sizes.len() as u32 + 1;
         sizes.push(fill_runs(
-            mask,
+            (mask.width(), mask.height()),
+            |i| mask.as_slice()[i],
             start,
-            labels.as_mut_slice(),
-            0,
-            label,
+            (labels.as_mut_slice(), 0, label),
+            &mut stack,
+        ));
+    }
+    Components { labels, sizes }
+}
+
+/// Labels the 4-connected components of the `true` cells of `mask` whose
+/// cells all share one `class` (two neighbours of different classes are
+/// not connected), numbered from 1 in row-major order of their first
+/// cells, as [`components4`].
+///
+/// # Panics
+/// If `class` is not the size of `mask` (read by index).
+#[must_use]
+pub fn components4_by_class(mask: &Grid<bool>, class: &Grid<u32>) -> Components {
+    assert_eq!(
+        (mask.width(), mask.height()),
+        (class.width(), class.height()),
+        "classes must cover the mask cell for cell"
+    );
+    let mut labels = Grid::new(mask.width(), mask.height(), 0u32);
+    let mut sizes = Vec::new();
+    let mut stack = Vec::new();
+    let (set, of) = (mask.as_slice(), class.as_slice());
+    for start in 0..mask.len() {
+        if !set[start] || labels.as_slice()[start] != 0 {
+            continue;
+        }
+        let label = sizes.len() as u32 + 1;
+        let here = of[start];
+        sizes.push(fill_runs(
+            (mask.width(), mask.height()),
+            |i| set[i] && of[i] == here,
+            start,
+            (labels.as_mut_slice(), 0, label),
             &mut stack,
         ));
     }
@@ -74,31 +108,28 @@ pub fn reachable(mask: &Grid<bool>, start: Cell) -> Grid<bool> {
     if mask.is_set(start) {
         let first = mask.index_of(start);
         fill_runs(
-            mask,
+            (mask.width(), mask.height()),
+            |i| mask.as_slice()[i],
             first,
-            out.as_mut_slice(),
-            false,
-            true,
+            (out.as_mut_slice(), false, true),
             &mut Vec::new(),
         );
     }
     out
 }
 
-/// Sets to `value` every cell of `ids` (row-major, `mask`'s size) that is
-/// 4-connected to the set cell `start` through set cells of `mask` whose
-/// `ids` are `blank`, a row's run at a time (one seed per run beside a
-/// filled one, above and below; `stack` is scratch). Returns how many
-/// cells it set.
+/// Sets to `value` every cell of `ids` (row-major, `w × h`) that is
+/// 4-connected to the cell `start` through cells `set` takes in (by
+/// index) whose `ids` are `blank`, a row's run at a time (one seed per
+/// run beside a filled one, above and below; `stack` is scratch).
+/// Returns how many cells it set.
 fn fill_runs<T: Copy + PartialEq>(
-    mask: &Grid<bool>,
+    (w, h): (usize, usize),
+    set: impl Fn(usize) -> bool,
     start: usize,
-    ids: &mut [T],
-    blank: T,
-    value: T,
+    (ids, blank, value): (&mut [T], T, T),
     stack: &mut Vec<(usize, usize)>,
 ) -> usize {
-    let (w, h, set) = (mask.width(), mask.height(), mask.as_slice());
     let mut size = 0;
     stack.clear();
     stack.push((start / w, start % w));
@@ -108,7 +139,7 @@ fn fill_runs<T: Copy + PartialEq>(
             continue;
         }
         // The seed's whole run of blank cells along its row.
-        let open = |k: usize| set[row + k] && ids[row + k] == blank;
+        let open = |k: usize| set(row + k) && ids[row + k] == blank;
         let (mut a, mut b) = (c, c);
         while a > 0 && open(a - 1) {
             a -= 1;
@@ -123,7 +154,7 @@ fn fill_runs<T: Copy + PartialEq>(
             .flatten()
         {
             let nrow = next * w;
-            let open = |k: usize| set[nrow + k] && ids[nrow + k] == blank;
+            let open = |k: usize| set(nrow + k) && ids[nrow + k] == blank;
             let mut k = a;
             while k <= b {
                 if open(k) {
@@ -167,6 +198,11 @@ mod tests {
 
     /// Components by a plain flood from each unlabelled cell in turn.
     fn flooded(mask: &Grid<bool>) -> Components {
+        flooded_by_class(mask, &Grid::new(mask.width(), mask.height(), 0))
+    }
+
+    /// The same, neighbours joined only within one class.
+    fn flooded_by_class(mask: &Grid<bool>, class: &Grid<u32>) -> Components {
         let mut labels = Grid::new(mask.width(), mask.height(), 0u32);
         let mut sizes = Vec::new();
         for c in mask.true_cells() {
@@ -180,7 +216,7 @@ mod tests {
             while let Some(x) = stack.pop() {
                 size += 1;
                 for (_, n) in mask.neighbours4(x) {
-                    if mask[n] && labels[n] == 0 {
+                    if mask[n] && labels[n] == 0 && class[n] == class[x] {
                         labels[n] = label;
                         stack.push(n);
                     }
@@ -200,6 +236,22 @@ mod tests {
             let mask = crate::random::random_density(w, h, density, seed).free_mask();
             let runs = components4(&mask);
             let flood = flooded(&mask);
+            proptest::prop_assert_eq!(&runs.labels, &flood.labels);
+            proptest::prop_assert_eq!(runs.sizes, flood.sizes);
+        }
+
+        /// By class, the same as a plain flood that joins neighbours of one
+        /// class only (classes in vertical bands and noise).
+        #[test]
+        fn classes_label_as_a_plain_flood_does(seed in 0u64..1000, density in 0.0f64..0.5, bands in 1usize..6, noise in 0.0f64..0.2) {
+            let (w, h) = (31, 19);
+            let mask = crate::random::random_density(w, h, density, seed).free_mask();
+            let specks = crate::random::random_density(w, h, noise, seed ^ 1).free_mask();
+            let class = Grid::from_fn(w, h, |c| {
+                (c.col * bands / w) as u32 + u32::from(!specks[c]) * 7
+            });
+            let runs = components4_by_class(&mask, &class);
+            let flood = flooded_by_class(&mask, &class);
             proptest::prop_assert_eq!(&runs.labels, &flood.labels);
             proptest::prop_assert_eq!(runs.sizes, flood.sizes);
         }

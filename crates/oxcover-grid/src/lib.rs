@@ -57,7 +57,7 @@ pub mod traverse;
 
 pub use admissible::{TOLERANCE_CELLS, admissible, clearance};
 pub use coarse::CoarseGrid;
-pub use components::{Components, components4, reachable};
+pub use components::{Components, components4, components4_by_class, reachable};
 pub use coverable::{Coverability, DiscRobot, coverable_cells};
 pub use error::{Error, Result};
 pub use frame::MapFrame;

@@ -18,7 +18,7 @@ use rayon::prelude::*;
 
 use oxcover_decomp::merge_small_regions;
 use oxcover_distance::{Wavefront, cidt};
-use oxcover_grid::{Cell, Grid};
+use oxcover_grid::{Cell, Components, Grid, components4_by_class};
 
 use crate::problem::CoverageProblem;
 use crate::tour::open_tour;
@@ -49,38 +49,8 @@ impl RoomUnits {
             (w, h),
             "room labels must cover the plannable grid cell for cell"
         );
-        let mut labels = Grid::new(w, h, 0u32);
-        let mut sizes = Vec::new();
-        let mut stack: Vec<usize> = Vec::new();
-        // By index into the row-major cells: this visits every cell of
-        // the map.
-        let (open, room_of) = (plannable.as_slice(), rooms.as_slice());
-        let ids = labels.as_mut_slice();
-        for seed in 0..open.len() {
-            if !open[seed] || ids[seed] != 0 {
-                continue;
-            }
-            let id = sizes.len() as u32 + 1;
-            let room = room_of[seed];
-            ids[seed] = id;
-            stack.push(seed);
-            let mut n = 0;
-            while let Some(i) = stack.pop() {
-                n += 1;
-                let col = i % w;
-                let west = (col > 0).then(|| i - 1);
-                let east = (col + 1 < w).then(|| i + 1);
-                let north = i.checked_sub(w);
-                let south = (i + w < open.len()).then(|| i + w);
-                for j in [north, east, south, west].into_iter().flatten() {
-                    if open[j] && ids[j] == 0 && room_of[j] == room {
-                        ids[j] = id;
-                        stack.push(j);
-                    }
-                }
-            }
-            sizes.push(n);
-        }
+        // Connected plannable parts of one room each.
+        let Components { labels, sizes } = components4_by_class(plannable, rooms);
         let mut units = Self { labels, sizes };
         units.merge_small(min_cells);
         units
