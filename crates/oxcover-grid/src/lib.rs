@@ -11,10 +11,12 @@
 //!   images, MovingAI `.map`, an ASCII test format; a PGM+yaml writer.
 //! - [`admissible()`], [`edt`]: cells a disc robot may occupy, from an exact
 //!   Euclidean distance transform (its passes run in parallel; the values
-//!   do not depend on the thread count).
+//!   do not depend on the thread count), thresholded without the distances
+//!   beyond the threshold where only "within `r`?" is asked.
 //! - [`contour`]: iso-contours of a field over the grid (marching squares).
-//! - [`components`], [`Coverability`]: reachable and coverable cells for a
-//!   robot, a tool and a start.
+//! - [`components`], [`Coverability`]: 4-connected components (also within
+//!   classes, as room units are), reachable and coverable cells for a robot,
+//!   a tool and a start.
 //! - [`CoarseGrid`]: tool-sized coverage cells over a fine map.
 //! - [`footprint`]: which cells a tool covers along a polyline.
 //! - [`traverse`]: exact traversal of straight segments over a grid.
