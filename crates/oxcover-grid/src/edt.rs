@@ -93,18 +93,11 @@ fn within(sources: &Grid<bool>, outside: bool, kernel: Kernel, limit: u64) -> Gr
         return Grid::new(w, hgt, false);
     }
     let src = sources.as_slice();
-    let stripes: Vec<Vec<u32>> = (0..w.div_ceil(STRIPE))
-        .into_par_iter()
-        .map(|k| {
-            capped_column_pass(
-                src,
-                (w, hgt),
-                k * STRIPE..((k + 1) * STRIPE).min(w),
-                outside,
-                (kernel, limit),
-            )
-        })
-        .collect();
+    // `h` as far as `limit`, `u32::MAX` beyond (or with no source).
+    let stripes = column_stripes(src, (w, hgt), outside, u32::MAX, |k| {
+        let v = kernel.h(k);
+        if v <= limit { v as u32 } else { u32::MAX }
+    });
     // `h(j − K)` for the window's offsets `j` in `0..=2K`.
     let terms: Vec<u64> = (-reach..=reach).map(|k| kernel.h(k)).collect();
     let pad = reach as usize + 1;
@@ -122,11 +115,7 @@ fn within(sources: &Grid<bool>, outside: bool, kernel: Kernel, limit: u64) -> Gr
         |(line, next), (block, out)| {
             for (i, out) in out.chunks_mut(w).enumerate() {
                 let r = block * ROWS + i;
-                for (k, stripe) in stripes.iter().enumerate() {
-                    let c0 = k * STRIPE;
-                    let sw = (w - c0).min(STRIPE);
-                    line[pad + c0..pad + c0 + sw].copy_from_slice(&stripe[r * sw..(r + 1) * sw]);
-                }
+                row_of(&stripes, w, r, &mut line[pad..pad + w]);
                 // Most cells have no source within the window at all:
                 // the nearest finite value ahead tells (`next`, an index
                 // into `line`, found walking back from the end).
@@ -148,58 +137,6 @@ fn within(sources: &Grid<bool>, outside: bool, kernel: Kernel, limit: u64) -> Gr
         },
     );
     Grid::from_vec(w, hgt, out).unwrap_or_else(|| Grid::new(w, hgt, false))
-}
-
-/// [`column_pass`] as far as `limit`: `h` of the distance to the nearest
-/// source in the column where that is at most `limit`, `u32::MAX` where
-/// it is more or there is none.
-fn capped_column_pass(
-    src: &[bool],
-    (w, hgt): (usize, usize),
-    cols: std::ops::Range<usize>,
-    outside: bool,
-    (kernel, limit): (Kernel, u64),
-) -> Vec<u32> {
-    let h = |k: i64| {
-        let v = kernel.h(k);
-        if v <= limit { v as u32 } else { u32::MAX }
-    };
-    let sw = cols.len();
-    let mut g = vec![u32::MAX; sw * hgt];
-    let none = if outside { -1 } else { i64::MIN };
-    let mut last = vec![none; sw];
-    for r in 0..hgt {
-        let (row, out) = (
-            &src[r * w + cols.start..r * w + cols.end],
-            &mut g[r * sw..(r + 1) * sw],
-        );
-        for c in 0..sw {
-            if row[c] {
-                last[c] = r as i64;
-            }
-            if last[c] != i64::MIN {
-                out[c] = h(r as i64 - last[c]);
-            }
-        }
-    }
-    let none = if outside { hgt as i64 } else { i64::MIN };
-    let next = &mut last;
-    next.fill(none);
-    for r in (0..hgt).rev() {
-        let (row, out) = (
-            &src[r * w + cols.start..r * w + cols.end],
-            &mut g[r * sw..(r + 1) * sw],
-        );
-        for c in 0..sw {
-            if row[c] {
-                next[c] = r as i64;
-            }
-            if next[c] != i64::MIN {
-                out[c] = out[c].min(h(next[c] - r as i64));
-            }
-        }
-    }
-    g
 }
 
 /// The per-axis kernel `h`.
@@ -234,19 +171,7 @@ fn transform(sources: &Grid<bool>, outside: bool, kernel: Kernel) -> Grid<u64> {
     let src = sources.as_slice();
     // Column pass, in stripes of columns side by side: each stripe's
     // values row-major within the stripe.
-    let stripes: Vec<Vec<u64>> = (0..w.div_ceil(STRIPE))
-        .into_par_iter()
-        .map(|k| {
-            column_pass(
-                src,
-                w,
-                hgt,
-                k * STRIPE..((k + 1) * STRIPE).min(w),
-                outside,
-                kernel,
-            )
-        })
-        .collect();
+    let stripes = column_stripes(src, (w, hgt), outside, INFINITE, |k| kernel.h(k));
     // Row pass, blocks of rows side by side, on lines padded with a wall
     // column each side when the outside is a source.
     let pad = usize::from(outside);
@@ -257,11 +182,7 @@ fn transform(sources: &Grid<bool>, outside: bool, kernel: Kernel) -> Grid<u64> {
         |(env, line), (block, out)| {
             for (i, out) in out.chunks_mut(w).enumerate() {
                 let r = block * ROWS + i;
-                for (k, stripe) in stripes.iter().enumerate() {
-                    let c0 = k * STRIPE;
-                    let sw = (w - c0).min(STRIPE);
-                    line[pad + c0..pad + c0 + sw].copy_from_slice(&stripe[r * sw..(r + 1) * sw]);
-                }
+                row_of(&stripes, w, r, &mut line[pad..pad + w]);
                 row_pass(env, line, pad, kernel, out);
             }
         },
@@ -269,21 +190,48 @@ fn transform(sources: &Grid<bool>, outside: bool, kernel: Kernel) -> Grid<u64> {
     Grid::from_vec(w, hgt, g).unwrap_or_else(|| Grid::new(w, hgt, INFINITE))
 }
 
-/// The column pass over `cols`: `h` of the distance to the nearest source
-/// in the column (row-major within the stripe). `h` is monotone in |k|,
-/// so the nearest source row gives the minimum; rows are walked in memory
-/// order, every column of the stripe at once.
-fn column_pass(
+/// The column pass in stripes of [`STRIPE`] columns side by side, each
+/// stripe's values row-major within the stripe ([`column_pass`]).
+fn column_stripes<V: Copy + Ord + Send + Sync>(
     src: &[bool],
-    w: usize,
-    hgt: usize,
+    (w, hgt): (usize, usize),
+    outside: bool,
+    none: V,
+    h: impl Fn(i64) -> V + Sync,
+) -> Vec<Vec<V>> {
+    (0..w.div_ceil(STRIPE))
+        .into_par_iter()
+        .map(|k| {
+            let cols = k * STRIPE..((k + 1) * STRIPE).min(w);
+            column_pass(src, (w, hgt), cols, outside, (none, &h))
+        })
+        .collect()
+}
+
+/// Row `r` of the column pass, gathered from its `stripes` into `line`
+/// (`w` values).
+fn row_of<V: Copy>(stripes: &[Vec<V>], w: usize, r: usize, line: &mut [V]) {
+    for (k, stripe) in stripes.iter().enumerate() {
+        let c0 = k * STRIPE;
+        let sw = (w - c0).min(STRIPE);
+        line[c0..c0 + sw].copy_from_slice(&stripe[r * sw..(r + 1) * sw]);
+    }
+}
+
+/// The column pass over `cols`: `h` of the distance to the nearest source
+/// in the column (row-major within the stripe), `none` where there is
+/// none. `h` is monotone in |k|, so the nearest source row gives the
+/// minimum; rows are walked in memory order, every column of the stripe
+/// at once.
+fn column_pass<V: Copy + Ord>(
+    src: &[bool],
+    (w, hgt): (usize, usize),
     cols: std::ops::Range<usize>,
     outside: bool,
-    kernel: Kernel,
-) -> Vec<u64> {
-    let h = |k: i64| kernel.h(k);
+    (none_value, h): (V, impl Fn(i64) -> V),
+) -> Vec<V> {
     let sw = cols.len();
-    let mut g = vec![INFINITE; sw * hgt];
+    let mut g = vec![none_value; sw * hgt];
     let none = if outside { -1 } else { i64::MIN };
     let mut last = vec![none; sw];
     for r in 0..hgt {
