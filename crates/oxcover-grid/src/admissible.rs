@@ -29,7 +29,11 @@ pub fn admissible(map: &OccupancyGrid, robot_radius: f64) -> Grid<bool> {
     // at least its ceiling: not within one less.
     let t = 2.0 * (r - TOLERANCE_CELLS);
     let least = (t * t).ceil();
-    let near = boundary_within_sq4(&blocked, true, least as u64 - 1);
+    if !least.is_finite() {
+        // No clearance is that large (or the radius is not a number).
+        return Grid::new(free.width(), free.height(), false);
+    }
+    let near = boundary_within_sq4(&blocked, true, (least as u64).saturating_sub(1));
     free.zip_map(&near, |&f, &n| f && !n)
 }
 
@@ -70,6 +74,10 @@ mod tests {
             vec![Cell::new(2, 2), Cell::new(2, 3), Cell::new(2, 4)]
         );
         assert_eq!(admissible(&m, 0.0751).count_true(), 0);
+        // A radius no clearance reaches, or none at all: nothing, no panic.
+        for r in [1e300, f64::INFINITY, f64::NAN] {
+            assert_eq!(admissible(&m, r).count_true(), 0, "{r}");
+        }
         let c = clearance(&m);
         assert!((c[Cell::new(2, 3)] - 0.075).abs() < 1e-12);
     }

@@ -215,6 +215,9 @@ pub fn coverable_cells(free: &Grid<bool>, centres: &Grid<bool>, tool_cells: f64)
         // Only the centre cells themselves are within reach.
         return Grid::from_fn(free.width(), free.height(), |c| free[c] && centres[c]);
     }
+    if reach.is_nan() {
+        return Grid::new(free.width(), free.height(), false);
+    }
     // An integer d² is at most reach² when at most its floor.
     let near = center_within_sq(centres, (reach * reach).floor() as u64);
     free.zip_map(&near, |&f, &n| f && n)
