@@ -51,7 +51,10 @@ pub fn center_distance_sq(sources: &Grid<bool>) -> Grid<u64> {
 }
 
 /// `true` where [`boundary_distance_sq4`] is at most `limit`, found
-/// without working out the distances beyond it ([`within`]).
+/// without working out the distances beyond it: where the nearest source
+/// lies within the limit it lies within a few columns, so each cell looks
+/// at those only (beyond 32 cells along an axis, the full transform is
+/// thresholded).
 #[must_use]
 pub fn boundary_within_sq4(
     sources: &Grid<bool>,
@@ -62,7 +65,7 @@ pub fn boundary_within_sq4(
 }
 
 /// `true` where [`center_distance_sq`] is at most `limit`, found without
-/// working out the distances beyond it ([`within`]).
+/// working out the distances beyond it (as [`boundary_within_sq4`]).
 #[must_use]
 pub fn center_within_sq(sources: &Grid<bool>, limit: u64) -> Grid<bool> {
     within(sources, false, Kernel::Center, limit)
