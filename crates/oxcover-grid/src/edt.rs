@@ -21,6 +21,14 @@
 //! with the smaller `G` of the two cells it separates, evaluated at `2x`, and
 //! takes `G(x)` itself where smaller (`h(0) = 0`).
 //!
+//! Where only "is a source within `limit`?" is asked (admissibility, the
+//! coverable cells, the lane mask), [`boundary_within_sq4`] and
+//! [`center_within_sq`] answer it exactly without the distances beyond:
+//! the column pass stops at the limit, and the row pass takes the least
+//! `G(q) + h(x − q)` over the few columns `q` within reach instead of an
+//! envelope (our addition, not in the paper; beyond 32 cells along an
+//! axis the full transform is thresholded).
+//!
 //! Each pass runs in parallel (rayon): the column pass by stripes of
 //! columns, the row pass by blocks of rows. Every value is computed as a
 //! single-threaded pass would compute it, so the result does not depend on
