@@ -238,7 +238,12 @@ impl PathShape {
     /// Measures `points` with short segments (< `resolution / 4`) merged.
     #[must_use]
     pub fn of(points: &[Point], resolution: f64) -> Self {
-        let length_m = points.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
+        // Folded from +0.0: an f64 `sum` starts at -0.0, which a path of one
+        // waypoint would report (and print) as a length of "-0".
+        let length_m = points
+            .windows(2)
+            .map(|w| (w[1] - w[0]).norm())
+            .fold(0.0, |a, b| a + b);
         let min_seg = resolution / 4.0;
         let mut merged: Vec<Point> = Vec::with_capacity(points.len());
         for p in points {
@@ -280,6 +285,14 @@ mod tests {
     use oxcover_grid::Cell;
     use oxcover_grid::io::parse_ascii;
     use std::f64::consts::PI;
+
+    #[test]
+    fn one_waypoint_has_no_negative_zero() {
+        let s = PathShape::of(&[Point::new(0.5, 0.5)], 1.0);
+        assert_eq!(s.length_m, 0.0);
+        assert!(s.length_m.is_sign_positive(), "length {:?}", s.length_m);
+        assert_eq!(format!("{:.2}", s.length_m), "0.00");
+    }
 
     #[test]
     fn shape_of_a_u_turn() {
