@@ -137,7 +137,7 @@ pub(crate) fn cmd_segment(a: &SegmentArgs) -> Result<()> {
             (
                 format!("room {}", r.label),
                 format!(
-                    "{:.1} m² at ({:.2}, {:.2})",
+                    "{:>7.1} m² at ({:>7.2}, {:>7.2})",
                     r.area_m2, r.centroid[0], r.centroid[1]
                 ),
             )
