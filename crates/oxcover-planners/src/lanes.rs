@@ -50,6 +50,18 @@
 //!    on: 5906 → 5834 s and 4937 → 4898 s mean estimated time
 //!    (`docs/efficiency.md`).
 //!
+//! **Small islands.** A speck, a table leg or a thin pillar in the open
+//! (a blocked component of the C-space of at most (2 tool radii + 4
+//! cells)² cells, off the walls) would cut every lane through the hole it
+//! leaves in the lane mask, and each cut room would fall into chains of
+//! its own, with a transit to the island's loop besides. Instead two runs
+//! of a line whose gap holds only plannable cells and such an island are
+//! one lane, driven round the island where it blocks the line, and the
+//! island's loop is driven from the lane passing nearest (left at its
+//! nearest point, round the loop the way the lane runs, back to that
+//! point), not ordered as a node. Measured on rooms with 1, 4 and 16
+//! specks and on the shared maps (`docs/efficiency.md`).
+//!
 //! **Order.** Loops (entered and left at one of eight points) and chains
 //! (entered at one of four corners, left at the opposite end) are ordered
 //! by a small generalised TSP: nearest neighbour over every entry, 2-opt on
@@ -171,6 +183,13 @@ const ANGLES_BUILT: usize = 2;
 const BUILD_BUDGET: usize = 200_000;
 /// Entry points tried per loop.
 const LOOP_ENTRIES: usize = 8;
+/// Largest island that lanes pass and whose loop a lane drives as an
+/// excursion: at most (`ISLAND_SPAN` tool radii + 4 cells)² blocked cells of
+/// the C-space (with robot = tool radius, an obstacle of about 0.2 m: a
+/// table leg, a thin pillar, a scanner's speck). Larger islands, the pillar
+/// arenas' among them, were slower passed this way (measured:
+/// `docs/efficiency.md`).
+const ISLAND_SPAN: f64 = 2.0;
 /// How much slower than the fastest an angle's path may be after its
 /// first tightening pass and still be built to the end: the passes after
 /// the first never made up more on the 31 shared maps (measured, rooms on
@@ -181,6 +200,8 @@ const LAST_PASSES_GAIN: f64 = 0.05;
 /// tightening pass, and the finished path with its estimated time (none
 /// where it stopped then, too slow to be kept).
 type Built<'a> = (f64, Option<(f64, PathBuilder<'a>)>);
+/// An angle ordered: its modelled time, chains, order and splices.
+type Ordered = (f64, Vec<Chain>, Tour, Vec<Splice>);
 
 fn plan_lanes<'a>(
     input: &PlannerInput<'a>,
@@ -199,22 +220,34 @@ fn plan_lanes<'a>(
     };
     let time = input.time;
     let tool = input.tool_cells.max(0.5);
-    // The loops and the lane mask, side by side (independent).
-    // The lane mask's clearance (4·d², cells, to its nearest outside
-    // cell's boundary) lets each line skip the samples surely inside it.
-    let (loops, (lane_mask, mask_clearance)) = rayon::join(
+    // A tool narrower than a cell: lanes through the cell centres, one row
+    // or column apart, along the grid's axes only.
+    let narrow = tool < 1.0;
+    // The loops, the lane mask and the small islands, side by side
+    // (independent). The lane mask's clearance (4·d², cells, to its
+    // nearest outside cell's boundary) lets each line skip the samples
+    // surely inside it. Lanes run past a small island, and a lane passing
+    // by drives its loop.
+    let (loops, ((lane_mask, mask_clearance), islands)) = rayon::join(
         || edge_loops(plannable, input.admissible),
         || {
-            let mask = lane_mask(plannable, input.admissible, tool);
-            let clearance = boundary_distance_sq4(&mask.map(|&m| !m), true).into_vec();
-            (mask, clearance)
+            rayon::join(
+                || {
+                    let mask = lane_mask(plannable, input.admissible, tool);
+                    let clearance = boundary_distance_sq4(&mask.map(|&m| !m), true).into_vec();
+                    (mask, clearance)
+                },
+                || {
+                    (!narrow).then(|| {
+                        let span = (ISLAND_SPAN * tool).ceil() as usize + 4;
+                        small_islands(plannable, span * span)
+                    })
+                },
+            )
         },
     );
     // Lines one tool width apart, less the margin of the contract's samples
     // (a quarter of a cell apart along the path).
-    // A tool narrower than a cell: lanes through the cell centres, one row
-    // or column apart, along the grid's axes only.
-    let narrow = tool < 1.0;
     let spacing = if narrow {
         1.0
     } else {
@@ -252,8 +285,15 @@ fn plan_lanes<'a>(
     // `candidates` whatever the thread count).
     let score = |(i, &theta): (usize, &f64)| {
         let clearance = Some(mask_clearance.as_slice());
-        let (chains, step) =
-            chains_at(plannable, &lane_mask, clearance, theta, spacing, line_inset);
+        let (chains, step) = chains_bridged(
+            plannable,
+            &lane_mask,
+            clearance,
+            islands.as_ref(),
+            theta,
+            spacing,
+            line_inset,
+        );
         let mut cost = chains
             .iter()
             .map(|c| c.time(&cell_time, spacing))
@@ -317,13 +357,15 @@ fn plan_lanes<'a>(
         } else {
             (chains, 0.0)
         };
-        let mut nodes: Vec<Node> = loops.iter().map(Node::Loop).collect();
-        nodes.extend(chains.iter().map(Node::Chain));
+        let splices = islands.as_ref().map_or_else(Vec::new, |isl| {
+            splices_for(&loops, &chains, isl, plannable, spacing)
+        });
+        let nodes = nodes_of(&loops, &chains, &splices);
         let ends = (cell_center(start), exit);
         let (order, transit) = order_nodes(&nodes, ends, region, &cell_time);
-        (cost - saving + transit, chains, order)
+        (cost - saving + transit, chains, order, splices)
     };
-    let mut ordered: Vec<(f64, Vec<Chain>, Tour)> = near_ties
+    let mut ordered: Vec<Ordered> = near_ties
         .into_par_iter()
         .map_init(|| Region::new(plannable, tool), order_angle)
         .collect();
@@ -358,14 +400,20 @@ fn plan_lanes<'a>(
             time > (1.0 + LAST_PASSES_GAIN) * t.into_iter().fold(f64::INFINITY, f64::min)
         })
     };
-    let build = |(i, (_, chains, order)): (usize, &(f64, Vec<Chain>, Tour))| -> Result<Built<'a>> {
-        let mut nodes: Vec<Node> = loops.iter().map(Node::Loop).collect();
-        nodes.extend(chains.iter().map(Node::Chain));
+    let build = |(i, (_, chains, order, splices)): (usize, &Ordered)| -> Result<Built<'a>> {
+        let nodes = nodes_of(&loops, chains, splices);
+        let first_chain = nodes.len() - chains.len();
         let mut path = PathBuilder::new(plannable, start);
         for &(node, option) in order {
             match nodes[node] {
                 Node::Loop(l) => drive_loop(&mut path, l, option, loop_tolerance)?,
-                Node::Chain(c) => drive_chain(&mut path, c, option)?,
+                Node::Chain(c) => {
+                    let here: Vec<&Splice> = splices
+                        .iter()
+                        .filter(|s| s.chain == node - first_chain)
+                        .collect();
+                    drive_chain(&mut path, c, option, &here, &loops, loop_tolerance)?;
+                }
             }
         }
         let (points, count) = insert_detours(path.points(), &detours);
@@ -697,8 +745,18 @@ fn drive_loop(
     option: usize,
     tolerance: f64,
 ) -> Result<()> {
-    let seq: Vec<Vec<Cell>> = if l.closed {
-        let (p, i) = l.entry(option);
+    let entry = l.closed.then(|| l.entry(option));
+    drive_loop_from(path, l, option, entry, tolerance)
+}
+
+fn drive_loop_from(
+    path: &mut PathBuilder<'_>,
+    l: &EdgeLoop,
+    option: usize,
+    entry: Option<(usize, usize)>,
+    tolerance: f64,
+) -> Result<()> {
+    let seq: Vec<Vec<Cell>> = if let Some((p, i)) = entry {
         // The loop from its entry: the rest of the entry piece, the other
         // pieces, the start of the entry piece, back to the entry.
         let mut seq = vec![l.pieces[p][i..].to_vec()];
@@ -813,11 +871,193 @@ impl Chain {
     }
 }
 
-fn drive_chain(path: &mut PathBuilder<'_>, c: &Chain, option: usize) -> Result<()> {
-    for p in c.sequence(option) {
-        path.go_to(p)?;
+/// A small island's loop driven as an excursion from the lane passing
+/// nearest: the lane is left at the point nearest the loop, the loop is
+/// driven round from there (the way the lane runs), and the lane goes on
+/// from the same point.
+#[derive(Clone, Debug, PartialEq)]
+struct Splice {
+    /// The chain and its lane.
+    chain: usize,
+    lane: usize,
+    /// Where along the lane: 0 at its `a` end, 1 at `b`.
+    u: f64,
+    /// The loop, and the cell it is entered at (piece, index).
+    loop_index: usize,
+    entry: (usize, usize),
+}
+
+/// The splices of the loops round `islands`: each closed loop all of whose
+/// cells border an island cell goes to the lane whose nearest point to one of its cells is
+/// nearest, plannable and in clear sight of that cell, among the lanes
+/// within two lane spacings of the loop's box; a loop with no such lane
+/// stays a node of the order.
+fn splices_for(
+    loops: &[EdgeLoop],
+    chains: &[Chain],
+    islands: &Grid<bool>,
+    plannable: &Grid<bool>,
+    spacing: f64,
+) -> Vec<Splice> {
+    let margin = 2.0 * spacing.max(1.0);
+    let mut out = Vec::new();
+    for (li, l) in loops.iter().enumerate() {
+        let round_island = l.closed
+            && l.pieces.iter().flatten().all(|&c| {
+                RING.iter()
+                    .any(|&d| islands.offset(c, d).is_some_and(|n| islands[n]))
+            });
+        if !round_island {
+            continue;
+        }
+        let cells: Vec<(GridPoint, (usize, usize))> = l
+            .pieces
+            .iter()
+            .enumerate()
+            .flat_map(|(p, piece)| {
+                piece
+                    .iter()
+                    .enumerate()
+                    .map(move |(i, &c)| (cell_center(c), (p, i)))
+            })
+            .collect();
+        let (lo, hi) = cells.iter().fold(
+            (
+                GridPoint::new(f64::INFINITY, f64::INFINITY),
+                GridPoint::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+            ),
+            |(lo, hi), (q, _)| (lo.inf(q), hi.sup(q)),
+        );
+        let mut best: Option<(f64, Splice)> = None;
+        for (ci, c) in chains.iter().enumerate() {
+            for (ki, lane) in c.lanes.iter().enumerate() {
+                let (a, b) = (lane.a, lane.b);
+                if a.x.max(b.x) < lo.x - margin
+                    || a.x.min(b.x) > hi.x + margin
+                    || a.y.max(b.y) < lo.y - margin
+                    || a.y.min(b.y) > hi.y + margin
+                {
+                    continue;
+                }
+                let d = b - a;
+                let len2 = d.norm_squared();
+                for &(q, entry) in &cells {
+                    let u = if len2 > 0.0 {
+                        ((q - a).dot(&d) / len2).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    let at = a + d * u;
+                    let dist = (at - q).norm();
+                    if best.as_ref().is_some_and(|b| dist >= b.0) {
+                        continue;
+                    }
+                    if cell_of(plannable, at).is_some_and(|x| plannable[x])
+                        && segment_clear(plannable, at, q)
+                    {
+                        let splice = Splice {
+                            chain: ci,
+                            lane: ki,
+                            u,
+                            loop_index: li,
+                            entry,
+                        };
+                        best = Some((dist, splice));
+                    }
+                }
+            }
+        }
+        out.extend(best.map(|(_, s)| s));
+    }
+    out
+}
+
+/// The nodes of the order: the loops no lane drives, then the chains.
+fn nodes_of<'n>(loops: &'n [EdgeLoop], chains: &'n [Chain], splices: &[Splice]) -> Vec<Node<'n>> {
+    let mut driven = vec![false; loops.len()];
+    for s in splices {
+        driven[s.loop_index] = true;
+    }
+    let mut nodes: Vec<Node> = loops
+        .iter()
+        .zip(driven)
+        .filter(|(_, d)| !d)
+        .map(|(l, _)| Node::Loop(l))
+        .collect();
+    nodes.extend(chains.iter().map(Node::Chain));
+    nodes
+}
+
+/// Drives chain `c` under `option`: each lane along its line (round any
+/// island it passes), with the loops of `splices` (this chain's) driven
+/// from their lanes.
+fn drive_chain(
+    path: &mut PathBuilder<'_>,
+    c: &Chain,
+    option: usize,
+    splices: &[&Splice],
+    loops: &[EdgeLoop],
+    tolerance: f64,
+) -> Result<()> {
+    let backwards = option & 1 == 1;
+    let mut flip = option & 2 == 2;
+    let idx: Vec<usize> = if backwards {
+        (0..c.lanes.len()).rev().collect()
+    } else {
+        (0..c.lanes.len()).collect()
+    };
+    for k in idx {
+        let l = c.lanes[k];
+        let (from, to) = if flip { (l.b, l.a) } else { (l.a, l.b) };
+        path.go_to(from)?;
+        let mut here: Vec<(f64, &Splice)> = splices
+            .iter()
+            .filter(|s| s.lane == k)
+            .map(|s| (if flip { 1.0 - s.u } else { s.u }, *s))
+            .collect();
+        here.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for (v, s) in here {
+            let at = from + (to - from) * v;
+            path.go_along(at)?;
+            drive_splice(path, &loops[s.loop_index], s.entry, to - from, tolerance)?;
+            path.go_to(at)?;
+        }
+        path.go_along(to)?;
+        flip = !flip;
     }
     Ok(())
+}
+
+/// Drives closed loop `l` from its cell `entry` back to it, round the way
+/// that leaves the entry along `heading` rather than against it.
+fn drive_splice(
+    path: &mut PathBuilder<'_>,
+    l: &EdgeLoop,
+    entry: (usize, usize),
+    heading: Vector,
+    tolerance: f64,
+) -> Result<()> {
+    let (p, i) = entry;
+    let flat: Vec<Cell> = l.pieces.iter().flatten().copied().collect();
+    let e: usize = l.pieces[..p].iter().map(Vec::len).sum::<usize>() + i;
+    let m = flat.len();
+    let ahead = cell_center(flat[(e + 2) % m]) - cell_center(flat[(e + m - 2) % m]);
+    path.go_to(cell_center(l.pieces[p][i]))?;
+    if ahead.dot(&heading) < 0.0 {
+        let reversed = EdgeLoop {
+            pieces: l
+                .pieces
+                .iter()
+                .rev()
+                .map(|q| q.iter().rev().copied().collect())
+                .collect(),
+            closed: true,
+        };
+        let entry = (l.pieces.len() - 1 - p, l.pieces[p].len() - 1 - i);
+        drive_loop_from(path, &reversed, 0, Some(entry), tolerance)
+    } else {
+        drive_loop_from(path, l, 0, Some(entry), tolerance)
+    }
 }
 
 /// The chains of lanes at direction `theta` (grid coordinates), lines at
@@ -827,6 +1067,21 @@ fn chains_at(
     plannable: &Grid<bool>,
     lane_mask: &Grid<bool>,
     clearance: Option<&[u64]>,
+    theta: f64,
+    spacing: f64,
+    inset: f64,
+) -> (Vec<Chain>, f64) {
+    chains_bridged(plannable, lane_mask, clearance, None, theta, spacing, inset)
+}
+
+/// [`chains_at`], with two runs of a line joined into one lane where the
+/// gap between them holds only plannable cells and cells of `islands`
+/// (and some of the latter): the lane is driven round the island.
+fn chains_bridged(
+    plannable: &Grid<bool>,
+    lane_mask: &Grid<bool>,
+    clearance: Option<&[u64]>,
+    islands: Option<&Grid<bool>>,
     theta: f64,
     spacing: f64,
     inset: f64,
@@ -959,6 +1214,19 @@ fn chains_at(
         let mut clear = Vec::new();
         for (a, b) in runs {
             split_clear(plannable, &at, v, a, b, &mut clear);
+        }
+        if let Some(isl) = islands {
+            let mut merged: Vec<(f64, f64)> = Vec::with_capacity(clear.len());
+            for r in clear {
+                if let Some(last) = merged.last_mut() {
+                    if bridgeable(plannable, isl, &at, v, last.1, r.0) {
+                        last.1 = r.1;
+                        continue;
+                    }
+                }
+                merged.push(r);
+            }
+            clear = merged;
         }
         rows.push(clear);
     }
@@ -1218,6 +1486,64 @@ fn pieces_at_jumps(chain: &Chain) -> Vec<Chain> {
 }
 
 /// Pushes the clear sub-runs of `[a, b]` on line `v` into `out`.
+/// Whether the gap `a..b` of line `v` holds only plannable and island
+/// cells, and at least one island cell.
+fn bridgeable(
+    plannable: &Grid<bool>,
+    islands: &Grid<bool>,
+    at: &impl Fn(f64, f64) -> GridPoint,
+    v: f64,
+    a: f64,
+    b: f64,
+) -> bool {
+    let mut island = false;
+    let mut u = a;
+    while u <= b {
+        let Some(c) = cell_of(plannable, at(u, v)) else {
+            return false;
+        };
+        if islands[c] {
+            island = true;
+        } else if !plannable[c] {
+            return false;
+        }
+        u += 0.25;
+    }
+    island
+}
+
+/// The small islands of blocked cells: 4-connected components of the
+/// cells that are not plannable, of at most `max_cells` cells, off the
+/// grid's edge and touching no other blocked component even diagonally.
+fn small_islands(plannable: &Grid<bool>, max_cells: usize) -> Grid<bool> {
+    let blocked = plannable.map(|&p| !p);
+    let comps = oxcover_grid::components::components4(&blocked);
+    let mut ok = vec![false; comps.count() + 1];
+    for (i, &n) in comps.sizes.iter().enumerate() {
+        ok[i + 1] = n <= max_cells;
+    }
+    let (w, h) = (plannable.width(), plannable.height());
+    for c in blocked.true_cells() {
+        let l = comps.labels[c] as usize;
+        if !ok[l] {
+            continue;
+        }
+        if c.row == 0 || c.col == 0 || c.row + 1 == h || c.col + 1 == w {
+            ok[l] = false;
+            continue;
+        }
+        for d in RING {
+            if let Some(n) = blocked.offset(c, d) {
+                let m = comps.labels[n] as usize;
+                if m != 0 && m != l {
+                    ok[l] = false;
+                }
+            }
+        }
+    }
+    comps.labels.map(|&l| ok[l as usize])
+}
+
 fn split_clear(
     plannable: &Grid<bool>,
     at: &impl Fn(f64, f64) -> GridPoint,
@@ -1986,6 +2312,105 @@ mod tests {
             .collect();
         assert_eq!(ys.len(), 1);
         assert!((ys[0] - EDGE_NUDGE - 11.5).abs() < 1e-9, "{ys:?}");
+    }
+
+    /// A blocked cell of `rows` (a string of `.`) at each of `cells`.
+    fn with_blocked(w: usize, h: usize, cells: &[(usize, usize)]) -> Vec<String> {
+        let mut rows: Vec<String> = (0..h).map(|_| ".".repeat(w)).collect();
+        for &(r, c) in cells {
+            rows[r].replace_range(c..=c, "#");
+        }
+        rows
+    }
+
+    fn block(rows: std::ops::Range<usize>, cols: std::ops::Range<usize>) -> Vec<(usize, usize)> {
+        rows.flat_map(|r| cols.clone().map(move |c| (r, c)))
+            .collect()
+    }
+
+    /// A speck in the open is an island; a wall, a speck touching a wall
+    /// diagonally and a block over the size limit are not.
+    #[test]
+    fn small_islands_are_specks_off_the_walls() {
+        let mut cells = block(0..1, 0..30);
+        cells.extend(block(8..10, 8..10));
+        cells.extend([(1, 21), (2, 20)]);
+        cells.extend(block(12..17, 18..23));
+        let rows = with_blocked(30, 20, &cells);
+        let refs: Vec<&str> = rows.iter().map(String::as_str).collect();
+        let islands = small_islands(&mask(&refs), 16);
+        let found: Vec<Cell> = islands.true_cells().collect();
+        assert_eq!(
+            found,
+            vec![
+                Cell::new(8, 8),
+                Cell::new(8, 9),
+                Cell::new(9, 8),
+                Cell::new(9, 9)
+            ]
+        );
+    }
+
+    /// A room with a speck (its C-space blot 6 × 6 cells), tool 3 cells:
+    /// without islands the lines through the speck's hole in the lane mask
+    /// stop at it and the room falls into several chains; with them each
+    /// line keeps one lane across the room, as in the bare room, and the
+    /// speck's loop goes to the lane passing nearest.
+    #[test]
+    fn lanes_run_past_a_speck_and_drive_its_loop() {
+        let (w, h, tool) = (60, 40, 3.0);
+        let rows = with_blocked(w, h, &block(17..23, 27..33));
+        let refs: Vec<&str> = rows.iter().map(String::as_str).collect();
+        let plannable = mask(&refs);
+        let lanes = lane_mask(&plannable, &plannable, tool);
+        let spacing = 2.0 * (tool * tool - 1.0 / 64.0).sqrt() * 0.999;
+        let inset = tool - OUTSET - LINE_MARGIN;
+        let islands = small_islands(&plannable, 100);
+        assert_eq!(islands.count_true(), 36);
+        let (cut, _) = chains_at(&plannable, &lanes, None, PI / 2.0, spacing, inset);
+        let (passed, _) = chains_bridged(
+            &plannable,
+            &lanes,
+            None,
+            Some(&islands),
+            PI / 2.0,
+            spacing,
+            inset,
+        );
+        let bare = Grid::new(w, h, true);
+        let bare_lanes = lane_mask(&bare, &bare, tool);
+        let (open, _) = chains_at(&bare, &bare_lanes, None, PI / 2.0, spacing, inset);
+        assert_eq!(open.len(), 1);
+        assert!(cut.len() > 1, "{} chains", cut.len());
+        assert_eq!(passed.len(), 1);
+        assert_eq!(passed[0].lanes.len(), open[0].lanes.len());
+        // The speck's loop is the second (traced after the room's border)
+        // and goes to a lane; the order then has one loop node, the border.
+        let loops = edge_loops(&plannable, &plannable);
+        assert_eq!(loops.len(), 2);
+        let splices = splices_for(&loops, &passed, &islands, &plannable, spacing);
+        assert_eq!(splices.len(), 1);
+        assert_eq!(splices[0].loop_index, 1);
+        let nodes = nodes_of(&loops, &passed, &splices);
+        assert_eq!(nodes.len(), 2);
+        assert!(matches!(nodes[0], Node::Loop(l) if std::ptr::eq(l, &loops[0])));
+        // Driven, every piece is clear and the loop is driven whole: each
+        // of its cells lies within the loop tolerance of the path.
+        let c = &passed[0];
+        let here: Vec<&Splice> = splices.iter().collect();
+        let mut path = PathBuilder::new(&plannable, Cell::new(1, 1));
+        drive_chain(&mut path, c, 0, &here, &loops, 0.8).unwrap();
+        let pts = path.points();
+        for s in pts.windows(2) {
+            assert!(segment_clear(&plannable, s[0], s[1]), "{s:?}");
+        }
+        for cell in loops[1].cells() {
+            let near = pts
+                .windows(2)
+                .map(|s| segment_distance(s[0], s[1], cell_center(cell)))
+                .fold(f64::INFINITY, f64::min);
+            assert!(near <= 1.0, "{cell:?} {near}");
+        }
     }
 
     proptest::proptest! {

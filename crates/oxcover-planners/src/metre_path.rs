@@ -115,6 +115,43 @@ impl<'a> PathBuilder<'a> {
         Ok(())
     }
 
+    /// Goes to `q` along the straight line, round what blocks it (each
+    /// blocked stretch by the shortest route to the line's next clear
+    /// point).
+    pub(crate) fn go_along(&mut self, q: GridPoint) -> Result<()> {
+        let p = self.last();
+        if self.clear(p, q) {
+            self.push(q);
+            return Ok(());
+        }
+        let n = ((q - p).norm() / 0.25).ceil().max(1.0) as usize;
+        let pt = |k: usize| p + (q - p) * (k as f64 / n as f64);
+        let plannable = self.plannable;
+        let inside = |k: usize| cell_of(plannable, pt(k)).is_some_and(|c| plannable[c]);
+        let mut k = 0;
+        while k < n {
+            let mut j = k;
+            while j < n && inside(j + 1) && self.clear(pt(j), pt(j + 1)) {
+                j += 1;
+            }
+            if j > k {
+                self.push(pt(j));
+            }
+            if j == n {
+                break;
+            }
+            // The first sample after the blocked stretch from which the
+            // line goes on clear (not one on a blocked cell's edge).
+            let mut m = j + 1;
+            while m < n && !(inside(m) && self.clear(pt(m), pt(m + 1))) {
+                m += 1;
+            }
+            self.go_to(pt(m))?;
+            k = m;
+        }
+        self.go_to(q)
+    }
+
     /// A shortest 4-connected route `a ..= b` of plannable cells (A*).
     fn route(&mut self, a: Cell, b: Cell) -> Result<Vec<Cell>> {
         let plannable = self.plannable;
@@ -562,6 +599,41 @@ mod tests {
         }
         // Straightened: along the bottom row and up the right column.
         assert_eq!(pts.len(), 4);
+    }
+
+    /// Along a line through a pillar: straight up to it, round it by the
+    /// shortest way, and back on the line to its end (not a route that
+    /// leaves the line for good, as `go_to` takes).
+    #[test]
+    fn goes_along_a_line_round_what_blocks_it() {
+        let m = mask(&[
+            "..........",
+            "..........",
+            "....##....",
+            "....##....",
+            "..........",
+        ]);
+        let mut b = PathBuilder::new(&m, Cell::new(2, 0));
+        b.go_along(Point::new(9.5, 2.5)).unwrap();
+        let pts = b.points().to_vec();
+        assert_eq!(pts.last(), Some(&GridPoint::new(9.5, 2.5)));
+        for w in pts.windows(2) {
+            assert!(segment_clear(&m, w[0], w[1]), "{w:?}");
+        }
+        // On the line up to the pillar and again after it.
+        let on_line = |p: &GridPoint| (p.y - 2.5).abs() < 1e-9;
+        assert!(
+            pts.iter().any(|p| on_line(p) && p.x <= 4.0 && p.x > 0.5),
+            "{pts:?}"
+        );
+        assert!(
+            pts.iter().any(|p| on_line(p) && p.x >= 6.0 && p.x < 9.5),
+            "{pts:?}"
+        );
+        // A clear line is one segment.
+        let mut c = PathBuilder::new(&m, Cell::new(0, 0));
+        c.go_along(Point::new(9.5, 0.5)).unwrap();
+        assert_eq!(c.points().len(), 2);
     }
 
     proptest::proptest! {
