@@ -7,7 +7,9 @@
 //! - [`bench`](mod@bench): run the criterion benchmarks and write their figures, with the
 //!   reference ratios and cells-touched counts, into `docs/benchmarks.md`.
 //! - [`efficiency`]: every complete planner, rooms on and off, on the real
-//!   floor plans, scored by estimated time; `docs/efficiency.md`.
+//!   floor plans, scored by estimated time; `docs/efficiency.md`, with
+//!   [`bare_rooms`]: synthetic rooms, bare and with specks, beside the
+//!   time their U-turns alone would take.
 //! - [`fuzz`]: every input parser fed mutated fixture bytes; any panic or
 //!   slow input is a finding.
 //! - [`memory_map`]: the large generated map of the memory measurements.
@@ -22,6 +24,7 @@
 //! - [`plot`]: the small SVG line charts of the reproduction pages.
 
 pub mod acceptance;
+pub mod bare_rooms;
 pub mod bench;
 pub mod efficiency;
 pub mod fuzz;
