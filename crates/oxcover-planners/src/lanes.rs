@@ -59,8 +59,10 @@
 //! one lane, driven round the island where it blocks the line, and the
 //! island's loop is driven from the lane passing nearest (left at its
 //! nearest point, round the loop the way the lane runs, back to that
-//! point), not ordered as a node. Measured on rooms with 1, 4 and 16
-//! specks and on the shared maps (`docs/efficiency.md`).
+//! point), not ordered as a node. An island up to twice as wide (a
+//! pillar, a small table) still cuts the lanes, but its loop, too, is
+//! driven from the lane passing nearest. Measured on rooms with 1, 4 and
+//! 16 specks and on the shared maps (`docs/efficiency.md`).
 //!
 //! **Order.** Loops (entered and left at one of eight points) and chains
 //! (entered at one of four corners, left at the opposite end) are ordered
@@ -183,13 +185,18 @@ const ANGLES_BUILT: usize = 2;
 const BUILD_BUDGET: usize = 200_000;
 /// Entry points tried per loop.
 const LOOP_ENTRIES: usize = 8;
-/// Largest island that lanes pass and whose loop a lane drives as an
-/// excursion: at most (`ISLAND_SPAN` tool radii + 4 cells)² blocked cells of
-/// the C-space (with robot = tool radius, an obstacle of about 0.2 m: a
-/// table leg, a thin pillar, a scanner's speck). Larger islands, the pillar
-/// arenas' among them, were slower passed this way (measured:
-/// `docs/efficiency.md`).
+/// Largest island that lanes pass: at most (`ISLAND_SPAN` tool radii + 4
+/// cells)² blocked cells of the C-space (with robot = tool radius, an
+/// obstacle of about 0.2 m: a table leg, a thin pillar, a scanner's
+/// speck). Larger islands, the pillar arenas' among them, were slower
+/// passed this way (measured: `docs/efficiency.md`).
 const ISLAND_SPAN: f64 = 2.0;
+/// Largest island whose loop a lane drives as an excursion, as
+/// [`ISLAND_SPAN`]: islands up to twice as wide across (a pillar, a
+/// small table) cut the lanes beside them, yet their loops are still
+/// driven from the lane passing nearest rather than reached as nodes of
+/// the order of their own (measured: `docs/efficiency.md`).
+const SPLICE_SPAN: f64 = 4.0;
 /// How much slower than the fastest an angle's path may be after its
 /// first tightening pass and still be built to the end: the passes after
 /// the first never made up more on the 31 shared maps (measured, rooms on
@@ -228,7 +235,7 @@ fn plan_lanes<'a>(
     // nearest outside cell's boundary) lets each line skip the samples
     // surely inside it. Lanes run past a small island, and a lane passing
     // by drives its loop.
-    let (loops, ((lane_mask, mask_clearance), islands)) = rayon::join(
+    let (loops, ((lane_mask, mask_clearance), island_sizes)) = rayon::join(
         || edge_loops(plannable, input.admissible),
         || {
             rayon::join(
@@ -237,15 +244,12 @@ fn plan_lanes<'a>(
                     let clearance = boundary_distance_sq4(&mask.map(|&m| !m), true).into_vec();
                     (mask, clearance)
                 },
-                || {
-                    (!narrow).then(|| {
-                        let span = (ISLAND_SPAN * tool).ceil() as usize + 4;
-                        small_islands(plannable, span * span)
-                    })
-                },
+                || (!narrow).then(|| island_masks(plannable, tool)),
             )
         },
     );
+    // Islands that lanes pass, and islands whose loops lanes drive.
+    let (islands, spliced) = island_sizes.unzip();
     // Lines one tool width apart, less the margin of the contract's samples
     // (a quarter of a cell apart along the path).
     let spacing = if narrow {
@@ -357,7 +361,7 @@ fn plan_lanes<'a>(
         } else {
             (chains, 0.0)
         };
-        let splices = islands.as_ref().map_or_else(Vec::new, |isl| {
+        let splices = spliced.as_ref().map_or_else(Vec::new, |isl| {
             splices_for(&loops, &chains, isl, plannable, spacing)
         });
         let nodes = nodes_of(&loops, &chains, &splices);
@@ -1515,7 +1519,8 @@ fn bridgeable(
 /// The small islands of blocked cells: 4-connected components of the
 /// cells that are not plannable, of at most `max_cells` cells, off the
 /// grid's edge and touching no other blocked component even diagonally.
-fn small_islands(plannable: &Grid<bool>, max_cells: usize) -> Grid<bool> {
+/// Each island cell holds its island's size in cells, every other cell 0.
+fn small_islands(plannable: &Grid<bool>, max_cells: usize) -> Grid<usize> {
     let blocked = plannable.map(|&p| !p);
     let comps = oxcover_grid::components::components4(&blocked);
     let mut ok = vec![false; comps.count() + 1];
@@ -1541,7 +1546,20 @@ fn small_islands(plannable: &Grid<bool>, max_cells: usize) -> Grid<bool> {
             }
         }
     }
-    comps.labels.map(|&l| ok[l as usize])
+    comps.labels.map(|&l| {
+        let l = l as usize;
+        if ok[l] { comps.sizes[l - 1] } else { 0 }
+    })
+}
+
+/// The islands that lanes pass ([`ISLAND_SPAN`]) and the islands whose
+/// loops a lane drives ([`SPLICE_SPAN`]; the first are among them), for
+/// a tool of `tool` cells.
+fn island_masks(plannable: &Grid<bool>, tool: f64) -> (Grid<bool>, Grid<bool>) {
+    let most = |span: f64| ((span * tool).ceil() as usize + 4).pow(2);
+    let sizes = small_islands(plannable, most(SPLICE_SPAN));
+    let up_to = |n: usize| sizes.map(|&s| s > 0 && s <= n);
+    (up_to(most(ISLAND_SPAN)), up_to(most(SPLICE_SPAN)))
 }
 
 fn split_clear(
@@ -2338,7 +2356,7 @@ mod tests {
         cells.extend(block(12..17, 18..23));
         let rows = with_blocked(30, 20, &cells);
         let refs: Vec<&str> = rows.iter().map(String::as_str).collect();
-        let islands = small_islands(&mask(&refs), 16);
+        let islands = small_islands(&mask(&refs), 16).map(|&n| n > 0);
         let found: Vec<Cell> = islands.true_cells().collect();
         assert_eq!(
             found,
@@ -2365,7 +2383,7 @@ mod tests {
         let lanes = lane_mask(&plannable, &plannable, tool);
         let spacing = 2.0 * (tool * tool - 1.0 / 64.0).sqrt() * 0.999;
         let inset = tool - OUTSET - LINE_MARGIN;
-        let islands = small_islands(&plannable, 100);
+        let islands = small_islands(&plannable, 100).map(|&n| n > 0);
         assert_eq!(islands.count_true(), 36);
         let (cut, _) = chains_at(&plannable, &lanes, None, PI / 2.0, spacing, inset);
         let (passed, _) = chains_bridged(
@@ -2399,6 +2417,61 @@ mod tests {
         let c = &passed[0];
         let here: Vec<&Splice> = splices.iter().collect();
         let mut path = PathBuilder::new(&plannable, Cell::new(1, 1));
+        drive_chain(&mut path, c, 0, &here, &loops, 0.8).unwrap();
+        let pts = path.points();
+        for s in pts.windows(2) {
+            assert!(segment_clear(&plannable, s[0], s[1]), "{s:?}");
+        }
+        for cell in loops[1].cells() {
+            let near = pts
+                .windows(2)
+                .map(|s| segment_distance(s[0], s[1], cell_center(cell)))
+                .fold(f64::INFINITY, f64::min);
+            assert!(near <= 1.0, "{cell:?} {near}");
+        }
+    }
+
+    /// A room with a table (its C-space blot 12 × 12 cells), tool 3
+    /// cells: too large for lanes to pass (the lines through it are cut),
+    /// small enough that its loop is driven from the lane passing nearest
+    /// rather than ordered as a node of its own.
+    #[test]
+    fn a_table_cuts_the_lanes_but_a_lane_drives_its_loop() {
+        let (w, h, tool) = (60, 40, 3.0);
+        let rows = with_blocked(w, h, &block(14..26, 24..36));
+        let refs: Vec<&str> = rows.iter().map(String::as_str).collect();
+        let plannable = mask(&refs);
+        let (passed, spliced) = island_masks(&plannable, tool);
+        assert_eq!(passed.count_true(), 0);
+        assert_eq!(spliced.count_true(), 144);
+        let lanes = lane_mask(&plannable, &plannable, tool);
+        let spacing = 2.0 * (tool * tool - 1.0 / 64.0).sqrt() * 0.999;
+        let inset = tool - OUTSET - LINE_MARGIN;
+        let (chains, _) = chains_bridged(
+            &plannable,
+            &lanes,
+            None,
+            Some(&passed),
+            PI / 2.0,
+            spacing,
+            inset,
+        );
+        assert!(chains.len() > 1, "{} chains", chains.len());
+        let loops = edge_loops(&plannable, &plannable);
+        assert_eq!(loops.len(), 2);
+        // Only the islands that lanes pass: the table's loop is a node.
+        assert!(splices_for(&loops, &chains, &passed, &plannable, spacing).is_empty());
+        let splices = splices_for(&loops, &chains, &spliced, &plannable, spacing);
+        assert_eq!(splices.len(), 1);
+        assert_eq!(splices[0].loop_index, 1);
+        let nodes = nodes_of(&loops, &chains, &splices);
+        assert_eq!(nodes.len(), chains.len() + 1);
+        // The chain holding the splice, driven: every piece is clear and
+        // every cell of the table's loop lies within the loop tolerance.
+        let c = &chains[splices[0].chain];
+        let here: Vec<&Splice> = splices.iter().collect();
+        let start = Cell::new(1, 1);
+        let mut path = PathBuilder::new(&plannable, start);
         drive_chain(&mut path, c, 0, &here, &loops, 0.8).unwrap();
         let pts = path.points();
         for s in pts.windows(2) {
