@@ -9,7 +9,8 @@
 //! - [`efficiency`]: every complete planner, rooms on and off, on the real
 //!   floor plans, scored by estimated time; `docs/efficiency.md`, with
 //!   [`bare_rooms`]: synthetic rooms, bare and with specks, beside the
-//!   time their U-turns alone would take.
+//!   time their U-turns alone would take, and [`lane_ceiling`]: each map's
+//!   ceiling for a plan of lanes and loops that wastes nothing else.
 //! - [`fuzz`]: every input parser fed mutated fixture bytes; any panic or
 //!   slow input is a finding.
 //! - [`memory_map`]: the large generated map of the memory measurements.
@@ -28,6 +29,7 @@ pub mod bare_rooms;
 pub mod bench;
 pub mod efficiency;
 pub mod fuzz;
+pub mod lane_ceiling;
 pub mod maps;
 pub mod memory_map;
 pub mod plot;
