@@ -2412,17 +2412,28 @@ mod tests {
         let nodes = nodes_of(&loops, &passed, &splices);
         assert_eq!(nodes.len(), 2);
         assert!(matches!(nodes[0], Node::Loop(l) if std::ptr::eq(l, &loops[0])));
-        // Driven, every piece is clear and the loop is driven whole: each
-        // of its cells lies within the loop tolerance of the path.
-        let c = &passed[0];
+        // Driven, every piece is clear and the loop is driven whole.
+        assert_drives_clear_and_whole(&plannable, &passed[0], &splices, &loops[1], &loops);
+    }
+
+    /// Chain `c` driven with `splices`: every piece is clear, and each cell
+    /// of `spliced` (a loop a lane drives) lies within the loop tolerance
+    /// of the path.
+    fn assert_drives_clear_and_whole(
+        plannable: &Grid<bool>,
+        c: &Chain,
+        splices: &[Splice],
+        spliced: &EdgeLoop,
+        loops: &[EdgeLoop],
+    ) {
         let here: Vec<&Splice> = splices.iter().collect();
-        let mut path = PathBuilder::new(&plannable, Cell::new(1, 1));
-        drive_chain(&mut path, c, 0, &here, &loops, 0.8).unwrap();
+        let mut path = PathBuilder::new(plannable, Cell::new(1, 1));
+        drive_chain(&mut path, c, 0, &here, loops, 0.8).unwrap();
         let pts = path.points();
         for s in pts.windows(2) {
-            assert!(segment_clear(&plannable, s[0], s[1]), "{s:?}");
+            assert!(segment_clear(plannable, s[0], s[1]), "{s:?}");
         }
-        for cell in loops[1].cells() {
+        for cell in spliced.cells() {
             let near = pts
                 .windows(2)
                 .map(|s| segment_distance(s[0], s[1], cell_center(cell)))
@@ -2467,23 +2478,9 @@ mod tests {
         let nodes = nodes_of(&loops, &chains, &splices);
         assert_eq!(nodes.len(), chains.len() + 1);
         // The chain holding the splice, driven: every piece is clear and
-        // every cell of the table's loop lies within the loop tolerance.
+        // the table's loop is driven whole.
         let c = &chains[splices[0].chain];
-        let here: Vec<&Splice> = splices.iter().collect();
-        let start = Cell::new(1, 1);
-        let mut path = PathBuilder::new(&plannable, start);
-        drive_chain(&mut path, c, 0, &here, &loops, 0.8).unwrap();
-        let pts = path.points();
-        for s in pts.windows(2) {
-            assert!(segment_clear(&plannable, s[0], s[1]), "{s:?}");
-        }
-        for cell in loops[1].cells() {
-            let near = pts
-                .windows(2)
-                .map(|s| segment_distance(s[0], s[1], cell_center(cell)))
-                .fold(f64::INFINITY, f64::min);
-            assert!(near <= 1.0, "{cell:?} {near}");
-        }
+        assert_drives_clear_and_whole(&plannable, c, &splices, &loops[1], &loops);
     }
 
     proptest::proptest! {
