@@ -264,11 +264,11 @@ fn info_planners_and_demo() {
     let dir = cwd.join("oxcover-demo");
     for ext in ["csv", "svg", "png", "json"] {
         assert!(
-            dir.join(format!("simple_rooms_dtc.{ext}")).exists(),
+            dir.join(format!("simple_rooms_lanes.{ext}")).exists(),
             "{ext}"
         );
     }
-    let report = json(&std::fs::read_to_string(dir.join("simple_rooms_dtc.json")).unwrap());
+    let report = json(&std::fs::read_to_string(dir.join("simple_rooms_lanes.json")).unwrap());
     assert_eq!(report["coverage"], 1.0);
     assert_eq!(report["collisions"], 0);
 }

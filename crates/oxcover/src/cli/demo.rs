@@ -1,4 +1,5 @@
-//! The demo `oxcover` runs with no arguments: DTC with the boundary pass on a
+//! The demo `oxcover` runs with no arguments: `lanes` (room by room, wall
+//! loops and straight lanes, the fastest planner by estimated time) on a
 //! bundled ROS map (`fixtures/maps/turtlebot_simulator/simple_rooms`, 20 × 15 m
 //! at 0.05 m/cell) for a 30 cm robot with a 30 cm tool, written to
 //! `./oxcover-demo/` as CSV, SVG, PNG and a JSON report.
@@ -29,10 +30,10 @@ pub(crate) fn run() -> Result<()> {
 /// When `dir` or the files cannot be written.
 fn run_into(dir: &Path) -> Result<()> {
     let map = read_ros_yaml_from_bytes(Path::new(NAME), YAML, IMAGE, &ReadOptions::default())?;
-    let request = PlanRequest::new("dtc", map.resolution())?.robot(DiscRobot::new(0.15, 0.15)?);
+    let request = PlanRequest::new("lanes", map.resolution())?.robot(DiscRobot::new(0.15, 0.15)?);
     let outcome = plan(&map, &request)?;
     std::fs::create_dir_all(dir).map_err(|e| Error::write(dir, e))?;
-    let file = |ext: &str| -> PathBuf { dir.join(format!("simple_rooms_dtc.{ext}")) };
+    let file = |ext: &str| -> PathBuf { dir.join(format!("simple_rooms_lanes.{ext}")) };
     let (csv, svg, png, json) = (file("csv"), file("svg"), file("png"), file("json"));
     let written = write_outputs(
         &map,
@@ -49,7 +50,7 @@ fn run_into(dir: &Path) -> Result<()> {
     let mut out = super::out::stdout();
     let _ = writeln!(
         out,
-        "oxcover demo: DTC + boundary pass on {NAME}\n  {}x{} cells at {} m, robot radius 0.15 m, tool radius 0.15 m, planned in {:.0} ms\n",
+        "oxcover demo: lanes, room by room, on {NAME}\n  {}x{} cells at {} m, robot radius 0.15 m, tool radius 0.15 m, planned in {:.0} ms\n",
         map.width(),
         map.height(),
         map.resolution(),
@@ -63,7 +64,7 @@ fn run_into(dir: &Path) -> Result<()> {
     }
     let _ = writeln!(
         out,
-        "\nnext: `oxcover --help`, or `oxcover plan <map.yaml> --planner dtc --png plan.png`"
+        "\nnext: `oxcover --help`, or `oxcover plan <map.yaml> --planner lanes --png plan.png` (`oxcover planners` lists the others)"
     );
     Ok(())
 }
