@@ -39,6 +39,8 @@ struct Run {
     /// Time efficiency of the same path under other time models than the
     /// contract's ([`other_models`]).
     other_models: [f64; 3],
+    /// Where the estimated time goes ([`time_split`]).
+    split: TimeSplit,
 }
 
 impl Run {
@@ -64,6 +66,7 @@ impl Run {
             },
             room_units: out.room_units,
             other_models: other_models(&out.points, m.bound_time_s, time),
+            split: time_split(&out.points, m.bound_time_s, time),
         }
     }
 }
@@ -104,6 +107,62 @@ fn other_models(points: &[Point], bound: f64, time: &TimeModel) -> [f64; 3] {
         last = Some(p);
     }
     times.map(|t| if t > 0.0 { bound / t } else { 0.0 })
+}
+
+/// A path's estimated time under the contract's model, in parts (seconds).
+#[derive(Clone, Copy, Debug, Default)]
+struct TimeSplit {
+    /// The contract's `bound_time_s`.
+    bound: f64,
+    /// Driving beyond the bound: overlap, links, transits.
+    overlap: f64,
+    /// Turning at the contract's turns (heading changes above 30°).
+    turns: f64,
+    /// Turning at bends of at most 30° (along curved and ragged walls,
+    /// straightened staircases).
+    bends: f64,
+}
+
+impl TimeSplit {
+    fn total(&self) -> f64 {
+        self.bound + self.overlap + self.turns + self.bends
+    }
+}
+
+/// `points`' estimated time (`length / v + rotation / w`) split into the
+/// bound, the drive beyond it, and the turning at heading changes above
+/// [`GENTLE_RAD`] (the contract's turns) and at or below it. Repeated
+/// points are skipped, as the contract's rotation skips them; the
+/// contract merges segments shorter than a quarter cell before it counts
+/// turns, this split does not (it splits the rotation, which is summed
+/// over every heading change).
+fn time_split(points: &[Point], bound: f64, time: &TimeModel) -> TimeSplit {
+    let (v, w) = (time.linear_speed, time.angular_speed);
+    let mut split = TimeSplit {
+        bound,
+        overlap: -bound,
+        ..TimeSplit::default()
+    };
+    let mut heading: Option<f64> = None;
+    let mut last: Option<Point> = None;
+    for &p in points {
+        let Some(a) = last.filter(|&a| a != p) else {
+            last = Some(p);
+            continue;
+        };
+        let d = p - a;
+        let h = d.y.atan2(d.x);
+        let turn = heading.map_or(0.0, |g| wrap_angle(h - g).abs());
+        split.overlap += d.norm() / v;
+        if turn > GENTLE_RAD {
+            split.turns += turn / w;
+        } else {
+            split.bends += turn / w;
+        }
+        heading = Some(h);
+        last = Some(p);
+    }
+    split
 }
 
 /// Result of one planner on one map with rooms on or off.
@@ -160,8 +219,13 @@ fn run_one(name: &str, map: &OccupancyGrid, radius: f64, rooms: bool) -> Outcome
 }
 
 /// A setting's name, its best planner and, per map, the map's name, its
-/// lane-and-loop ceiling and the best planner's time efficiency (rooms on).
-type SettingCeilings<'a> = (&'a str, &'a str, Vec<(String, Ceiling, Option<f64>)>);
+/// lane-and-loop ceiling and the best planner's time efficiency and time
+/// split (rooms on).
+type SettingCeilings<'a> = (
+    &'a str,
+    &'a str,
+    Vec<(String, Ceiling, Option<(f64, TimeSplit)>)>,
+);
 
 /// The page's section on each map's lane-and-loop ceiling
 /// ([`crate::lane_ceiling`]) beside the best planner's time efficiency.
@@ -177,26 +241,35 @@ fn ceiling_section(ceilings: &[SettingCeilings<'_>], settings: &[Setting]) -> St
             .map_or(0.0, |s| s.target_efficiency);
         let _ = write!(
             md,
-            "### {setting}\n\n| map | bound s | holes | lanes | angle ° | ceiling | {planner} | share |\n|---|---:|---:|---:|---:|---:|---:|---:|\n"
+            "### {setting}\n\n| map | bound s | holes | lanes | angle ° | ceiling | {planner} | share | overlap s | turns s | bends s |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n"
         );
         for (name, c, planned) in rows {
-            let (got, share) = planned.map_or_else(
-                || (String::new(), String::new()),
-                |e| (format!("{e:.3}"), format!("{:.2}", e / c.efficiency)),
+            let cols = planned.map_or_else(
+                || " | | | | ".to_string(),
+                |(e, t)| {
+                    format!(
+                        "{e:.3} | {:.2} | {:.0} | {:.0} | {:.0}",
+                        e / c.efficiency,
+                        t.overlap,
+                        t.turns,
+                        t.bends
+                    )
+                },
             );
             let _ = writeln!(
                 md,
-                "| {name} | {:.0} | {} | {} | {} | {:.3} | {got} | {share} |",
+                "| {name} | {:.0} | {} | {} | {} | {:.3} | {cols} |",
                 c.bound_s, c.holes, c.lanes, c.angle_deg, c.efficiency
             );
         }
         let ceiling_mean = mean(&rows.iter().map(|r| r.1.efficiency).collect::<Vec<_>>());
-        let planned: Vec<f64> = rows.iter().filter_map(|r| r.2).collect();
+        let splits: Vec<TimeSplit> = rows.iter().filter_map(|r| r.2.map(|p| p.1)).collect();
+        let planned: Vec<f64> = rows.iter().filter_map(|r| r.2.map(|p| p.0)).collect();
         let below = rows.iter().filter(|r| r.1.efficiency < target).count();
         // The model is no bound: say where a plan beats it.
         let beaten: Vec<&str> = rows
             .iter()
-            .filter(|r| r.2.is_some_and(|e| e > r.1.efficiency))
+            .filter(|r| r.2.is_some_and(|(e, _)| e > r.1.efficiency))
             .map(|r| r.0.as_str())
             .collect();
         let beaten = if beaten.is_empty() {
@@ -206,14 +279,40 @@ fn ceiling_section(ceilings: &[SettingCeilings<'_>], settings: &[Setting]) -> St
         };
         let _ = writeln!(
             md,
-            "\nMean ceiling {ceiling_mean:.3}; issue 15's target for the mean, {target:.2}, is {:.0} % of it, and {below} of {} maps have a ceiling below the target; {planner} reaches {:.3}, {:.0} % of the mean ceiling; {beaten}.\n",
+            "\nMean ceiling {ceiling_mean:.3}; issue 15's target for the mean, {target:.2}, is {:.0} % of it, and {below} of {} maps have a ceiling below the target; {planner} reaches {:.3}, {:.0} % of the mean ceiling; {beaten}.",
             100.0 * target / ceiling_mean,
             rows.len(),
             mean(&planned),
             100.0 * mean(&planned) / ceiling_mean
         );
+        let _ = writeln!(md, "\n{}\n", split_summary(planner, &splits));
     }
     md
+}
+
+/// What the plans' time beyond the bound is made of, summed over `splits`,
+/// and the mean time efficiency were each part free.
+fn split_summary(planner: &str, splits: &[TimeSplit]) -> String {
+    let sum = |f: &dyn Fn(&TimeSplit) -> f64| splits.iter().map(f).sum::<f64>();
+    let over = sum(&|t| t.total() - t.bound).max(f64::MIN_POSITIVE);
+    let share = |part: f64| 100.0 * part / over;
+    let without = |f: &dyn Fn(&TimeSplit) -> f64| {
+        mean(
+            &splits
+                .iter()
+                .map(|t| t.bound / (t.total() - f(t)).max(f64::MIN_POSITIVE))
+                .collect::<Vec<_>>(),
+        )
+    };
+    format!(
+        "Where the time of {planner} beyond the bound goes (rooms on, summed over the maps; `overlap s`: driving beyond the bound, that is overlap, links and transits; `turns s`: turning at heading changes above 30°, the contract's turns; `bends s`: turning at heading changes of 30° or less, along curved and ragged walls): overlap {:.0} %, turns {:.0} %, bends {:.0} %. The mean time efficiency were the bends free: {:.3}; the overlap free: {:.3}; both: {:.3} (what is left is the turns alone).",
+        share(sum(&|t| t.overlap)),
+        share(sum(&|t| t.turns)),
+        share(sum(&|t| t.bends)),
+        without(&|t| t.bends),
+        without(&|t| t.overlap),
+        without(&|t| t.bends + t.overlap),
+    )
 }
 
 fn mean(v: &[f64]) -> f64 {
@@ -425,7 +524,7 @@ pub fn run(only: Option<&str>, filter: Option<&str>) -> anyhow::Result<()> {
                 .enumerate()
                 .map(|(m, (map_name, map))| -> anyhow::Result<_> {
                     let planned = match at(p, m, true) {
-                        Outcome::Done(r) => Some(r.efficiency),
+                        Outcome::Done(r) => Some((r.efficiency, r.split)),
                         _ => None,
                     };
                     Ok((
@@ -664,5 +763,40 @@ mod tests {
         assert!((1.0 / every - drive).abs() < 1e-9);
         // No path, no time: no efficiency.
         assert_eq!(other_models(&[], 1.0, &time), [0.0; 3]);
+    }
+
+    #[test]
+    fn the_time_split_adds_up_to_the_estimated_time() {
+        let time = TimeModel::default();
+        let (v, w) = (time.linear_speed, time.angular_speed);
+        let q = std::f64::consts::FRAC_PI_2;
+        // A U-turn (two quarter turns: turns) then a bend of 0.2 rad.
+        let (c, s) = (0.2f64.cos(), 0.2f64.sin());
+        let pts = [
+            Point::new(0.0, 0.0),
+            Point::new(3.0, 0.0),
+            Point::new(3.0, 0.3),
+            Point::new(3.0, 0.3),
+            Point::new(0.0, 0.3),
+            Point::new(-c, 0.3 + s),
+        ];
+        let t = time_split(&pts, 10.0, &time);
+        let length = 6.3 + 1.0;
+        assert!((t.total() - time.time(length, 2.0 * q + 0.2)).abs() < 1e-9);
+        assert!((t.bound - 10.0).abs() < 1e-12);
+        assert!((t.overlap - (length / v - 10.0)).abs() < 1e-9);
+        assert!((t.turns - 2.0 * q / w).abs() < 1e-9);
+        assert!((t.bends - 0.2 / w).abs() < 1e-9);
+        // Each part free in turn.
+        let text = split_summary("p", &[t]);
+        let over = t.total() - t.bound;
+        assert!(
+            text.contains(&format!("bends {:.0} %", 100.0 * t.bends / over)),
+            "{text}"
+        );
+        assert!(
+            text.contains(&format!("bends free: {:.3}", 10.0 / (t.total() - t.bends))),
+            "{text}"
+        );
     }
 }
