@@ -18,7 +18,12 @@
 //!    line to its nearest wall) on both sides, over free cells and within a
 //!    wall's thickness, reaches a cell of clearance at least two cells more
 //!    than the candidate's. A corridor (as wide on both sides) or the mouth
-//!    of a corridor (wide on one side only) is no door. The door is cut with
+//!    of a corridor (wide on one side only) is no door. Of equally narrow
+//!    candidates (a doorway of even width has one per cell along it) the
+//!    one nearest where the doorway opens into the narrower of its two
+//!    spaces comes first (the space's width: where a climb to ever wider
+//!    cells from the opening stops), so a doorway belongs to the room it
+//!    leads into, not to the corridor it leaves. The door is cut with
 //!    a disc of the candidate's clearance plus 1.5 cells, which spans the
 //!    gap between the two walls like the survey's critical line between the
 //!    critical point's two nearest obstacle points.
@@ -115,6 +120,19 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
             candidates.push((d4[c], c));
         }
     }
+    // Only candidates that narrow between two wider spaces can be doors;
+    // of equally narrow ones (a passage of even width, a candidate per cell
+    // along it), the one where the passage opens into the narrower of the
+    // two spaces comes first, so that the passage belongs to the space it
+    // leads into (an office's doorway to the office, not to the corridor).
+    let mut candidates: Vec<(u64, u32, Cell)> = candidates
+        .into_iter()
+        .filter_map(|(d, c)| {
+            let [a, b] = openings(free, &d4, c, door_half)?;
+            let near = if a.space <= b.space { a.at } else { b.at };
+            Some((d, (2.0 * near) as u32, c))
+        })
+        .collect();
     candidates.sort_unstable();
     let mut cut = Grid::new(w, h, false);
     // The doors chosen so far, in square buckets at least as wide as the
@@ -123,7 +141,7 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     let bucket = (2.0 * door_half + 4.0).ceil().max(1.0) as usize;
     let (bw, bh) = (w.div_ceil(bucket), h.div_ceil(bucket));
     let mut chosen: Vec<Vec<(Cell, f64)>> = vec![Vec::new(); bw * bh];
-    for &(_, c) in &candidates {
+    for &(_, _, c) in &candidates {
         let r = clearance(c);
         let (br, bc) = (c.row / bucket, c.col / bucket);
         let near = (br.saturating_sub(1)..(br + 2).min(bh))
@@ -135,7 +153,7 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
             continue;
         }
         let disc = r + 1.5;
-        if narrows(free, &d4, c, door_half) {
+        {
             chosen[br * bw + bc].push((c, r));
             let k = disc.ceil() as isize;
             for dr in -k..=k {
@@ -223,12 +241,14 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     }
 }
 
-/// Whether the axis at `c` narrows between two wider spaces: along the
-/// axis (across the critical line, the line from `c` to its nearest wall
-/// cell) on both sides, within a wall's thickness and the wider space's
-/// clearance, a straight walk over free cells reaches a cell of clearance at
-/// least [`WIDER`] cells more than `c`'s.
-fn narrows(free: &Grid<bool>, d4: &Grid<u64>, c: Cell, door_half: f64) -> bool {
+/// Where the axis at `c` opens into a wider space on either side, if it
+/// narrows there between two: along the axis (across the critical line,
+/// the line from `c` to its nearest wall cell) on both sides, within a
+/// wall's thickness and the wider space's clearance, a straight walk over
+/// free cells reaches a cell of clearance at least [`WIDER`] cells more
+/// than `c`'s. Each side's opening: how far that cell is from `c`, and the
+/// clearance of the space beyond ([`crest`]).
+fn openings(free: &Grid<bool>, d4: &Grid<u64>, c: Cell, door_half: f64) -> Option<[Opening; 2]> {
     let r = (d4[c] as f64).sqrt() / 2.0;
     let wide = r + WIDER;
     let wide4 = (4.0 * wide * wide).ceil() as u64;
@@ -246,33 +266,59 @@ fn narrows(free: &Grid<bool>, d4: &Grid<u64>, c: Cell, door_half: f64) -> bool {
             }
         }
     }
-    let Some((_, (ur, uc))) = best else {
-        return false;
-    };
+    let (_, (ur, uc)) = best?;
     // Along the axis: perpendicular to the critical line.
     let (pr, pc) = (-uc, ur);
     let reach = wide + door_half.min(2.0 * r) + 2.0;
+    let cell_at = |sign: f64, t: f64| {
+        let (rr, cc) = (
+            c.row as f64 + 0.5 + sign * t * pr,
+            c.col as f64 + 0.5 + sign * t * pc,
+        );
+        (rr >= 0.0 && cc >= 0.0)
+            .then(|| Cell::new(rr as usize, cc as usize))
+            .filter(|&q| free.get(q) == Some(&true))
+    };
     let side = |sign: f64| {
         let mut t = 0.5;
         while t <= reach {
-            let (rr, cc) = (
-                c.row as f64 + 0.5 + sign * t * pr,
-                c.col as f64 + 0.5 + sign * t * pc,
-            );
-            if rr < 0.0 || cc < 0.0 {
-                return false;
-            }
-            let q = Cell::new(rr as usize, cc as usize);
-            match free.get(q) {
-                Some(true) if d4[q] >= wide4 => return true,
-                Some(true) => {}
-                _ => return false,
+            let q = cell_at(sign, t)?;
+            if d4[q] >= wide4 {
+                return Some(Opening {
+                    at: t,
+                    space: crest(d4, q),
+                });
             }
             t += 0.5;
         }
-        false
+        None
     };
-    side(1.0) && side(-1.0)
+    Some([side(1.0)?, side(-1.0)?])
+}
+
+/// The clearance (4·d²) where a climb from `c` to ever wider neighbours
+/// stops: the widest point of the space `c` opens into, as seen from it
+/// (a climb never leads back through a narrower door).
+fn crest(d4: &Grid<u64>, mut c: Cell) -> u64 {
+    loop {
+        let next = RING8
+            .iter()
+            .filter_map(|&d| d4.offset(c, d))
+            .max_by_key(|&n| (d4[n], std::cmp::Reverse(n)));
+        match next {
+            Some(n) if d4[n] > d4[c] => c = n,
+            _ => return d4[c],
+        }
+    }
+}
+
+/// Where a narrowing opens into a wider space ([`openings`]).
+#[derive(Clone, Copy, Debug)]
+struct Opening {
+    /// Distance from the candidate (cells).
+    at: f64,
+    /// The widest 4·clearance² met beyond.
+    space: u64,
 }
 
 #[cfg(test)]
@@ -335,6 +381,49 @@ mod tests {
         let rooms = voronoi(&free, &params(0.2));
         assert_eq!(rooms.count(), 3, "{:?}", rooms.areas);
         assert_eq!(rooms.doors.len(), 2);
+    }
+
+    /// An office (14 × 14 cells) opens onto a corridor 7 cells wide through
+    /// a doorway 2 cells wide and 4 long: the doorway is the office's, cut
+    /// where it meets the narrower corridor (its last row, which the cut's
+    /// disc centres on, may go either way), whichever side the office is
+    /// on (a row-major tie-break among the doorway's equally narrow cells
+    /// gave it to whichever space lies below).
+    #[test]
+    fn a_doorway_belongs_to_the_room_it_leads_into() {
+        for office_above in [true, false] {
+            let office: Vec<String> = (0..14)
+                .map(|_| format!("{}{}{}", "#".repeat(10), ".".repeat(14), "#".repeat(16)))
+                .collect();
+            let doorway: Vec<String> = (0..4)
+                .map(|_| format!("{}..{}", "#".repeat(16), "#".repeat(22)))
+                .collect();
+            let corridor: Vec<String> = (0..7).map(|_| ".".repeat(40)).collect();
+            let rows: Vec<String> = if office_above {
+                [office, doorway, corridor].concat()
+            } else {
+                [corridor, doorway, office].concat()
+            };
+            let refs: Vec<&str> = rows.iter().map(String::as_str).collect();
+            let free = ascii_mask(&refs).unwrap();
+            let rooms = voronoi(&free, &params(0.2));
+            assert_eq!(rooms.count(), 2, "{:?}", rooms.areas);
+            let (office_cell, doorway_rows) = if office_above {
+                (Cell::new(5, 15), 14..17)
+            } else {
+                (Cell::new(15, 15), 8..11)
+            };
+            let office_label = rooms.labels[office_cell];
+            for r in doorway_rows {
+                for c in 16..18 {
+                    assert_eq!(
+                        rooms.labels[Cell::new(r, c)],
+                        office_label,
+                        "office above: {office_above}, doorway cell ({r}, {c})"
+                    );
+                }
+            }
+        }
     }
 
     /// Door widths the CLI refuses still segment (as one room) when the

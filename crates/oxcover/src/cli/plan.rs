@@ -43,8 +43,10 @@ pub(crate) struct PlanArgs {
     pub(crate) rooms: OnOff,
     #[command(flatten)]
     pub(crate) time: TimeArgs,
-    /// Sweep angle in degrees for boustrophedon and trapezoidal (lanes along it,
-    /// counter-clockwise from the map's x axis) [default: best of 0, 15, ..., 165].
+    /// Sweep angle in degrees for boustrophedon, trapezoidal and lanes (lanes
+    /// along it, counter-clockwise from the map's x axis) [default: the
+    /// fastest of 0, 15, ..., 165; for lanes also the walls' directions, per
+    /// region].
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
     pub(crate) sweep_angle: Option<f64>,
     /// Path file to write (CSV, header x,y).
