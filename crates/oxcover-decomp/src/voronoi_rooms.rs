@@ -153,15 +153,13 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
             continue;
         }
         let disc = r + 1.5;
-        {
-            chosen[br * bw + bc].push((c, r));
-            let k = disc.ceil() as isize;
-            for dr in -k..=k {
-                for dc in -k..=k {
-                    if ((dr * dr + dc * dc) as f64) <= disc * disc {
-                        if let Some(n) = at(c, (dr, dc)) {
-                            cut[n] = true;
-                        }
+        chosen[br * bw + bc].push((c, r));
+        let k = disc.ceil() as isize;
+        for dr in -k..=k {
+            for dc in -k..=k {
+                if ((dr * dr + dc * dc) as f64) <= disc * disc {
+                    if let Some(n) = at(c, (dr, dc)) {
+                        cut[n] = true;
                     }
                 }
             }
@@ -317,7 +315,8 @@ fn crest(d4: &Grid<u64>, mut c: Cell) -> u64 {
 struct Opening {
     /// Distance from the candidate (cells).
     at: f64,
-    /// The widest 4·clearance² met beyond.
+    /// The 4·clearance² of the space beyond: where a climb from the
+    /// opening stops ([`crest`]).
     space: u64,
 }
 
