@@ -37,7 +37,9 @@
 //! these departures: the medial axis is the distance transform's ridge, not
 //! a polygonal Voronoi graph; a candidate must separate two wider spaces to
 //! be a door (the survey cuts at every critical point and merges afterwards
-//! by heuristics on room shape); [`RoomParams::max_area_m2`] plays no part.
+//! by heuristics on room shape); of equally narrow candidates along a
+//! doorway, the one where it opens into the narrower space is cut (the
+//! survey leaves the choice open); [`RoomParams::max_area_m2`] plays no part.
 
 use std::collections::VecDeque;
 
