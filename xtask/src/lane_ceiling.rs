@@ -19,6 +19,14 @@
 //!   first costs a half turn (π) to enter;
 //! - the angle (whole degrees) with the fewest lanes.
 //!
+//! Beside it, the **cut** ceiling: the same with every hole cutting the
+//! lines that cross it (a lane is a run of a line across the region as it
+//! is, holes left open), again at the angle with the fewest lanes. Real
+//! lanes stop at a building or a rack; the planner's lanes pass only small
+//! islands, bending round them, which costs turning too. Optimistic in the
+//! same terms as the first, and no bound either: a plan whose parts lie at
+//! different angles may need fewer lanes than any one angle's.
+//!
 //! That is a model of the pattern, optimistic in every term it leaves out
 //! (overlap, links, transits, the corners of non-convex outlines, the
 //! wiggles of raster walls, the way round an island), not a proof that no
@@ -43,6 +51,10 @@ pub struct Ceiling {
     pub angle_deg: u32,
     /// `bound / (bound + turning)`, turning = (2π · (holes + 1) + π · (lanes − 1)) / w.
     pub efficiency: f64,
+    /// Lanes at the best angle when the holes cut them.
+    pub cut_lanes: usize,
+    /// The cut ceiling: as `efficiency`, with `cut_lanes` lanes.
+    pub cut_efficiency: f64,
 }
 
 /// The ceiling of `map` for robot = tool radius `radius` (metres), starting
@@ -59,17 +71,26 @@ pub fn ceiling(map: &OccupancyGrid, radius: f64, time: &TimeModel) -> anyhow::Re
     let region = &cells.reachable;
     let (filled, holes) = fill_holes(region);
     let spacing = 2.0 * radius / res;
-    let (lanes, angle_deg) = (0..180)
-        .map(|deg| (lanes_at(&filled, f64::from(deg).to_radians(), spacing), deg))
-        .min()
-        .unwrap_or((0, 0));
-    let turning = 2.0 * PI * (holes as f64 + 1.0) + PI * lanes.saturating_sub(1) as f64;
+    let fewest = |mask: &Grid<bool>| {
+        (0..180)
+            .map(|deg| (lanes_at(mask, f64::from(deg).to_radians(), spacing), deg))
+            .min()
+            .unwrap_or((0, 0))
+    };
+    let (lanes, angle_deg) = fewest(&filled);
+    let (cut_lanes, _) = fewest(region);
+    let efficiency = |lanes: usize| {
+        let turning = 2.0 * PI * (holes as f64 + 1.0) + PI * lanes.saturating_sub(1) as f64;
+        bound_s / (bound_s + time.time(0.0, turning))
+    };
     Ok(Ceiling {
         bound_s,
         holes,
         lanes,
         angle_deg,
-        efficiency: bound_s / (bound_s + time.time(0.0, turning)),
+        efficiency: efficiency(lanes),
+        cut_lanes,
+        cut_efficiency: efficiency(cut_lanes),
     })
 }
 
@@ -228,8 +249,19 @@ mod tests {
         let turning = time.time(0.0, 2.0 * PI + 18.0 * PI);
         assert!((c.efficiency - c.bound_s / (c.bound_s + turning)).abs() < 1e-12);
         // One speck: a hole, a loop more, the lanes pass it.
+        // Without a hole, cutting changes nothing.
+        assert_eq!(c.cut_lanes, c.lanes);
+        assert!((c.cut_efficiency - c.efficiency).abs() < 1e-12);
+        // One speck: a hole, a loop more; the lanes pass it, or are cut by
+        // it: the one or two lines across it become two lanes each.
         let speck = ceiling(&crate::bare_rooms::room(8.0, 6.0, 1), 0.15, &time).unwrap();
         assert_eq!((speck.holes, speck.lanes), (1, 19));
         assert!(speck.efficiency < c.efficiency);
+        assert!(
+            (20..=21).contains(&speck.cut_lanes),
+            "{} lanes cut",
+            speck.cut_lanes
+        );
+        assert!(speck.cut_efficiency < speck.efficiency);
     }
 }
