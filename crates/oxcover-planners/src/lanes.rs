@@ -729,7 +729,8 @@ fn other_wall_angles(loops: &[EdgeLoop], first: f64) -> Vec<f64> {
     for l in loops {
         for piece in &l.pieces {
             // Steps of 16 cells (taken every 4): a raster line's direction
-            // to within about 4°, where 4-cell steps come in multiples of 14°.
+            // to within about 4°, where a 4-cell step takes only a few
+            // directions (0°, 14°, 27°, 37°, 45°, ...).
             for w in piece.iter().step_by(4).collect::<Vec<_>>().windows(5) {
                 let (a, b) = (w[0], w[4]);
                 let (dx, dy) = (b.col as f64 - a.col as f64, b.row as f64 - a.row as f64);
