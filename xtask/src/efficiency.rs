@@ -262,16 +262,23 @@ fn ceiling_section(ceilings: &[SettingCeilings<'_>], settings: &[Setting]) -> St
                 c.cut_efficiency
             );
         }
-        let ceiling_mean = mean(&rows.iter().map(|r| r.1.efficiency).collect::<Vec<_>>());
         let splits: Vec<TimeSplit> = rows.iter().filter_map(|r| r.2.map(|p| p.1)).collect();
         let planned: Vec<f64> = rows.iter().filter_map(|r| r.2.map(|p| p.0)).collect();
-        let below = rows.iter().filter(|r| r.1.efficiency < target).count();
-        // The model is no bound: say where a plan beats it.
-        let beaten: Vec<&str> = rows
-            .iter()
-            .filter(|r| r.2.is_some_and(|(e, _)| e > r.1.efficiency))
-            .map(|r| r.0.as_str())
-            .collect();
+        // Per ceiling: its mean, the maps below the target, and (the model
+        // is no bound) the maps whose plan beats it.
+        let summary = |of: fn(&Ceiling) -> f64| {
+            let beaten: Vec<&str> = rows
+                .iter()
+                .filter(|r| r.2.is_some_and(|(e, _)| e > of(&r.1)))
+                .map(|r| r.0.as_str())
+                .collect();
+            (
+                mean(&rows.iter().map(|r| of(&r.1)).collect::<Vec<_>>()),
+                rows.iter().filter(|r| of(&r.1) < target).count(),
+                beaten,
+            )
+        };
+        let (ceiling_mean, below, beaten) = summary(|c| c.efficiency);
         let beaten = if beaten.is_empty() {
             "no map's plan beats its ceiling".to_string()
         } else {
@@ -285,13 +292,7 @@ fn ceiling_section(ceilings: &[SettingCeilings<'_>], settings: &[Setting]) -> St
             mean(&planned),
             100.0 * mean(&planned) / ceiling_mean
         );
-        let cut_mean = mean(&rows.iter().map(|r| r.1.cut_efficiency).collect::<Vec<_>>());
-        let cut_below = rows.iter().filter(|r| r.1.cut_efficiency < target).count();
-        let cut_beaten: Vec<&str> = rows
-            .iter()
-            .filter(|r| r.2.is_some_and(|(e, _)| e > r.1.cut_efficiency))
-            .map(|r| r.0.as_str())
-            .collect();
+        let (cut_mean, cut_below, cut_beaten) = summary(|c| c.cut_efficiency);
         let cut_beaten = match cut_beaten.as_slice() {
             [] => "no map's plan beats it".to_string(),
             [one] => format!("the plan of {one} beats it"),
