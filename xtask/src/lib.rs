@@ -107,6 +107,49 @@ pub fn floor_plans() -> anyhow::Result<Vec<(String, oxcover_grid::OccupancyGrid)
     Ok(out)
 }
 
+/// The rule the ipa benchmark reads its floor plans by
+/// (`../shared/maps/ipa-floorplans/SOURCE.md`: grey above 250 free, every
+/// other value an obstacle), as thresholds on the contract's occupancy
+/// scale (`(255 - v) / 255`).
+#[must_use]
+pub fn ipa_benchmark_thresholds() -> oxcover_grid::io::Thresholds {
+    let cut = 4.5 / 255.0;
+    oxcover_grid::io::Thresholds {
+        occupied_thresh: cut,
+        free_thresh: cut,
+        ..oxcover_grid::io::Thresholds::default()
+    }
+}
+
+/// The floor plan `name` (as [`floor_plans`] names it) read by the ipa
+/// benchmark's own rule ([`ipa_benchmark_thresholds`]), where that frees
+/// or blocks a cell that `contract` (the contract's reading of it) does
+/// not (unknown and occupied are both blocked to a planner).
+///
+/// # Errors
+/// When `../shared/maps` is missing or the map cannot be read.
+pub fn ipa_benchmark_reading(
+    name: &str,
+    contract: &oxcover_grid::OccupancyGrid,
+) -> anyhow::Result<Option<oxcover_grid::OccupancyGrid>> {
+    use oxcover_grid::io::{ReadOptions, read_map};
+    let Some(root) = shared_maps() else {
+        anyhow::bail!("../shared/maps not found next to the workspace");
+    };
+    let opts = ReadOptions::default()
+        .resolution(contract.resolution())
+        .thresholds(ipa_benchmark_thresholds());
+    let map = read_map(&root.join(name), &opts)?;
+    let free = |m: &oxcover_grid::OccupancyGrid| {
+        m.cells()
+            .as_slice()
+            .iter()
+            .map(|&o| o == oxcover_grid::Occupancy::Free)
+            .collect::<Vec<_>>()
+    };
+    Ok((free(&map) != free(contract)).then_some(map))
+}
+
 /// Replaces the text between `<!-- BEGIN name -->` and `<!-- END name -->` in `file`.
 ///
 /// # Errors
@@ -136,4 +179,19 @@ pub fn progress(len: u64, what: &str) -> indicatif::ProgressBar {
     }
     bar.set_message(what.to_string());
     bar
+}
+
+#[cfg(test)]
+mod tests {
+    use oxcover_grid::Occupancy::{Free, Occupied};
+
+    #[test]
+    fn the_ipa_rule_frees_only_grey_above_250() {
+        let t = super::ipa_benchmark_thresholds();
+        let read = |v: u8| t.classify(f64::from(v));
+        assert_eq!(
+            [read(255), read(251), read(250), read(230), read(0)],
+            [Free, Free, Occupied, Occupied, Occupied]
+        );
+    }
 }

@@ -70,6 +70,35 @@ proptest! {
     }
 }
 
+/// A floor plan drawn to its own rule (only near-white free, as the ipa
+/// benchmark reads its plans) is read by setting the thresholds; the
+/// default stays the contract's ROS defaults, which call light grey free.
+#[test]
+fn plain_images_take_the_thresholds_they_are_given() {
+    let dir = scratch("thresholds");
+    let path = dir.join("plan.pgm");
+    // Black wall, light grey outside (230), white floor, mid grey.
+    let values = [0u8, 230, 255, 128];
+    let mut bytes = b"P5\n4 1\n255\n".to_vec();
+    bytes.extend_from_slice(&values);
+    std::fs::write(&path, bytes).unwrap();
+    let cells = |opts: &ReadOptions| read_map(&path, opts).unwrap().cells().as_slice().to_vec();
+    use Occupancy::{Free, Occupied, Unknown};
+    assert_eq!(
+        cells(&ReadOptions::default()),
+        [Occupied, Free, Free, Unknown]
+    );
+    let white_only = oxcover_grid::io::Thresholds {
+        occupied_thresh: 4.5 / 255.0,
+        free_thresh: 4.5 / 255.0,
+        ..oxcover_grid::io::Thresholds::default()
+    };
+    assert_eq!(
+        cells(&ReadOptions::default().thresholds(white_only)),
+        [Occupied, Occupied, Free, Occupied]
+    );
+}
+
 #[test]
 fn every_bundled_map_reads() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/maps");

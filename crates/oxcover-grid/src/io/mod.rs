@@ -37,6 +37,11 @@ pub struct ReadOptions {
     pub resolution: f64,
     /// Largest map accepted, in cells. Default [`DEFAULT_MAX_CELLS`].
     pub max_cells: usize,
+    /// How the pixels of an image read without a yaml are classified.
+    /// Default the ROS defaults (contract); a yaml's own fields govern
+    /// its image. A floor plan drawn to another rule (say, only white is
+    /// free) is read by setting its thresholds here.
+    pub thresholds: Thresholds,
 }
 
 impl Default for ReadOptions {
@@ -44,6 +49,7 @@ impl Default for ReadOptions {
         Self {
             resolution: 1.0,
             max_cells: DEFAULT_MAX_CELLS,
+            thresholds: Thresholds::default(),
         }
     }
 }
@@ -66,6 +72,13 @@ impl ReadOptions {
     #[must_use]
     pub fn max_cells(mut self, max_cells: usize) -> Self {
         self.max_cells = max_cells;
+        self
+    }
+
+    /// Sets how the pixels of images without a yaml are classified.
+    #[must_use]
+    pub fn thresholds(mut self, thresholds: Thresholds) -> Self {
+        self.thresholds = thresholds;
         self
     }
 }
@@ -94,8 +107,8 @@ pub fn read_map(path: &Path, options: &ReadOptions) -> Result<OccupancyGrid> {
     }
 }
 
-/// Reads a plain image (PGM/PNG/BMP) with the ROS default thresholds, the given
-/// resolution and origin (0, 0).
+/// Reads a plain image (PGM/PNG/BMP) with the thresholds of `options` (by
+/// default the ROS defaults), its resolution and origin (0, 0).
 ///
 /// # Errors
 /// As [`read_map`].
@@ -106,7 +119,7 @@ pub fn read_image(path: &Path, options: &ReadOptions) -> Result<OccupancyGrid> {
 
 fn read_image_bytes(path: &Path, bytes: &[u8], options: &ReadOptions) -> Result<OccupancyGrid> {
     let resolution = positive("--resolution", options.resolution)?;
-    let cells = decode_image(path, bytes, options.max_cells, &Thresholds::default())?;
+    let cells = decode_image(path, bytes, options.max_cells, &options.thresholds)?;
     Ok(OccupancyGrid::new(cells, resolution, Point::origin()))
 }
 
