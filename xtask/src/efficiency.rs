@@ -260,6 +260,12 @@ fn benchmark_line<'r>(
             figures[*m] = None;
             continue;
         };
+        if theirs.collisions > 0 || theirs.coverage < 0.99 {
+            failures.push(format!(
+                "{name} on {map_name} read as its benchmark: coverage {:.4}, {} collisions",
+                theirs.coverage, theirs.collisions
+            ));
+        }
         figures[*m] = Some((theirs.efficiency, theirs.turns_per_10m2));
         parts.push(format!(
             "{map_name} (free {:.0} → {:.0} m², covered {:.0} → {:.0} m², time efficiency {:.3} → {:.3}, turns per 10 m² {:.1} → {:.1}, coverage {:.4}, {} collisions)",
