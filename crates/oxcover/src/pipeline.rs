@@ -295,8 +295,9 @@ pub struct PlanOutcome {
     pub coverage_without_boundary_pass: f64,
     /// What the boundary pass did, if it ran (summed over room units).
     pub boundary: Option<BoundaryRoute>,
-    /// Length of the path the boundary pass added (m; rooms on, before the
-    /// whole path's last tightening).
+    /// Length of the path the boundary pass added (m; the segments that end
+    /// at one of its waypoints, after the whole path's last tightening
+    /// where there is one).
     pub boundary_length_m: f64,
     /// Room units planned one after another, when the plan went room by
     /// room (`None`: the whole map at once).
@@ -619,12 +620,13 @@ fn plan_whole(
     t0: Instant,
 ) -> Result<PlanOutcome> {
     let region = plan_region(problem, request, start_prefix(problem), None, None)?;
-    let boundary_length_m = polyline_length(&region.points) - polyline_length(&region.raw);
-    let (points, _, covered) = if request.rooms {
-        tighten_plan(problem, None, region.points, Vec::new())
+    let in_pass = pass_flags(&region);
+    let (points, _, covered, in_pass) = if request.rooms {
+        tighten_plan(problem, None, region.points, Vec::new(), in_pass)
     } else {
-        (region.points, Vec::new(), None)
+        (region.points, Vec::new(), None, in_pass)
     };
+    let boundary_length_m = pass_length(&points, &in_pass);
     // The final path's cells, if known: from the tightening's check, or
     // the plan's own where the path is the plan (nothing appended, moved).
     let covered = covered.or_else(|| {
@@ -665,7 +667,7 @@ fn plan_rooms(
     let mut cells: Vec<Cell> = Vec::new();
     let mut raws = Vec::new();
     let mut boundary: Option<BoundaryRoute> = None;
-    let mut boundary_length_m = 0.0;
+    let mut in_pass: Vec<bool> = Vec::new();
     let mut here = problem.start_cell();
     let mut stretches = Vec::with_capacity(order.len());
     let mut wave = problem.transit_wavefront();
@@ -689,10 +691,10 @@ fn plan_rooms(
             *c = sub.to_map_cell(*c);
         }
         region.end = sub.to_map_cell(region.end);
-        boundary_length_m += polyline_length(&region.points) - polyline_length(&region.raw);
-        for p in &region.points {
+        for (p, pass) in region.points.iter().zip(pass_flags(&region)) {
             if points.last() != Some(p) {
                 points.push(*p);
+                in_pass.push(pass);
             }
         }
         // The unit's own work: the last points, after its transit.
@@ -717,7 +719,9 @@ fn plan_rooms(
         }
         here = region.end;
     }
-    let (points, stretches, covered) = tighten_plan(problem, Some(units), points, stretches);
+    let (points, stretches, covered, in_pass) =
+        tighten_plan(problem, Some(units), points, stretches, in_pass);
+    let boundary_length_m = pass_length(&points, &in_pass);
     let plan_ms = t0.elapsed().as_secs_f64() * 1e3;
     // Each room's own coverage is on its room's grid: the map's is found
     // afresh.
@@ -751,7 +755,8 @@ fn tighten_plan(
     units: Option<&RoomUnits>,
     points: Vec<Point>,
     stretches: Vec<RoomStretch>,
-) -> (Vec<Point>, Vec<RoomStretch>, Option<Grid<bool>>) {
+    in_pass: Vec<bool>,
+) -> (Vec<Point>, Vec<RoomStretch>, Option<Grid<bool>>, Vec<bool>) {
     let mut of_vertex = vec![0u32; points.len()];
     for s in &stretches {
         for z in &mut of_vertex[s.points.clone()] {
@@ -761,14 +766,15 @@ fn tighten_plan(
     let zones = units.map(|u| (&u.labels, of_vertex.as_slice()));
     let (tight, kept) = problem.tighten_within(&points, 0, zones);
     if tight == points {
-        return (points, stretches, None);
+        return (points, stretches, None, in_pass);
     }
     let reached = problem.covered_by(&tight);
     let tool = problem.robot().tool_radius;
     let (frame, coverable) = (problem.frame(), &problem.cells().coverable);
     if loses_coverage(frame, coverable, tool, &points, &reached) {
-        return (points, stretches, None);
+        return (points, stretches, None, in_pass);
     }
+    let in_pass = kept.iter().map(|&k| in_pass[k]).collect();
     let at = |i: usize| kept.partition_point(|&k| k < i);
     let stretches = stretches
         .into_iter()
@@ -777,7 +783,26 @@ fn tighten_plan(
             points: at(s.points.start)..at(s.points.end),
         })
         .collect();
-    (tight, stretches, Some(reached))
+    (tight, stretches, Some(reached), in_pass)
+}
+
+/// Which of a region's waypoints its boundary pass added: those after its
+/// planner's own path (`raw`, which `points` begins with).
+fn pass_flags(region: &RegionPlan) -> Vec<bool> {
+    let own = region.raw.len().min(region.points.len());
+    (0..region.points.len()).map(|i| i >= own).collect()
+}
+
+/// The length of the segments of `points` that end at a waypoint the
+/// boundary pass added (`in_pass`, one flag per waypoint): the pass's
+/// share of the path, the way to its first waypoint included.
+fn pass_length(points: &[Point], in_pass: &[bool]) -> f64 {
+    points
+        .windows(2)
+        .zip(in_pass.iter().skip(1))
+        .filter(|(_, pass)| **pass)
+        // From +0.0: an empty `sum` of floats is -0.0.
+        .fold(0.0, |total, (w, _)| total + (w[1] - w[0]).norm())
 }
 
 /// Whether a path that covers the cells `reached` leaves a coverable cell
@@ -851,10 +876,6 @@ fn finish(
         coarse_block: problem.block(),
         plan_ms,
     })
-}
-
-fn polyline_length(points: &[Point]) -> f64 {
-    points.windows(2).map(|w| (w[1] - w[0]).norm()).sum()
 }
 
 /// Where to write a plan's outputs (each optional).
@@ -1051,6 +1072,20 @@ mod tests {
         let n = &on.evaluation.metrics;
         assert_eq!((n.coverage, n.collisions), (1.0, 0));
         assert!(n.est_time_s <= m.est_time_s + 1e-9);
+        // The pass's length: every segment but those ending at the
+        // planner's own waypoint (the half cell east of the start). Rooms
+        // on, that is measured on the tightened path, which here drops the
+        // planner's waypoint: the pass is the whole of it.
+        let own = |points: &[Point]| -> f64 {
+            points
+                .windows(2)
+                .filter(|w| w[1] == Point::new(1.0, 1.5))
+                .map(|w| (w[1] - w[0]).norm())
+                .sum()
+        };
+        assert!((out.boundary_length_m - (m.length_m - own(&out.points))).abs() < 1e-9);
+        assert!((own(&out.points) - 0.5).abs() < 1e-9);
+        assert!((on.boundary_length_m - (n.length_m - own(&on.points))).abs() < 1e-9);
     }
 
     #[test]

@@ -49,7 +49,8 @@ pub struct BoundaryStats {
     pub anchors: usize,
     /// Fine cells the pass appended.
     pub appended_cells: usize,
-    /// Length the pass added (m).
+    /// Length the pass added (m): the finished path's segments that end at
+    /// one of its waypoints.
     pub length_m: f64,
     /// Its share of the path's length.
     pub length_share: f64,
