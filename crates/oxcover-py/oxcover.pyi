@@ -101,9 +101,18 @@ class Plan:
         """Writes the files all or none; returns the paths written."""
     def __len__(self) -> int: ...
 
-def load_map(path: PathLike, *, resolution: Optional[float] = None) -> Map:
+def load_map(
+    path: PathLike,
+    *,
+    resolution: Optional[float] = None,
+    free_thresh: Optional[float] = None,
+    occupied_thresh: Optional[float] = None,
+    negate: bool = False,
+) -> Map:
     """Reads a ROS yaml (+ PGM/PNG/BMP), a PGM/PNG/BMP image or a MovingAI
-    .map; `resolution` places an image read without a yaml."""
+    .map; `resolution` places an image read without a yaml, and
+    `free_thresh`, `occupied_thresh` and `negate` (map_server's fields)
+    classify its pixels."""
 
 def planners() -> list[PlannerInfo]: ...
 def plan(

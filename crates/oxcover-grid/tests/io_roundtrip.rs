@@ -121,3 +121,40 @@ fn every_bundled_map_reads() {
     let b = read_map(&root.join("nobleo/basement.yaml"), &ReadOptions::default()).unwrap();
     assert!(b.counts().unknown > b.counts().free);
 }
+
+/// `map_format` names the reader `read_map` picks: by extension, else by
+/// the first bytes (a MovingAI map under any name), and an image otherwise.
+#[test]
+fn map_format_names_the_reader_read_map_picks() {
+    use oxcover_grid::io::{MapFormat, map_format};
+    let dir = scratch("format");
+    let file = |name: &str, bytes: &[u8]| {
+        let p = dir.join(name);
+        std::fs::write(&p, bytes).unwrap();
+        p
+    };
+    let movingai = b"type octile\nheight 1\nwidth 2\nmap\n..\n";
+    let cases = [
+        (file("a.yaml", b"not read"), MapFormat::RosYaml),
+        (file("a.YML", b"not read"), MapFormat::RosYaml),
+        (file("a.map", b"not read"), MapFormat::MovingAi),
+        (file("grid.txt", movingai), MapFormat::MovingAi),
+        (
+            file("plan.pgm", b"P5\n2 1\n255\n\xff\xff"),
+            MapFormat::Image,
+        ),
+        (file("empty.png", b""), MapFormat::Image),
+    ];
+    for (path, want) in &cases {
+        assert_eq!(map_format(path).unwrap(), *want, "{}", path.display());
+    }
+    // The content sniff agrees with what `read_map` then does with it.
+    let grid = read_map(&cases[3].0, &ReadOptions::default().resolution(0.5)).unwrap();
+    assert_eq!(
+        (grid.width(), grid.height(), grid.resolution()),
+        (2, 1, 1.0)
+    );
+    let missing = dir.join("missing.png");
+    let err = map_format(&missing).unwrap_err().to_string();
+    assert!(err.contains("missing.png"), "{err}");
+}

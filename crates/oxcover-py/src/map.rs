@@ -394,16 +394,42 @@ impl Map {
 
 /// Reads a map in any format the command line reads: a ROS map_server yaml
 /// (with its PGM/PNG/BMP image), a plain PGM, PNG or BMP image, or a
-/// MovingAI `.map`. `resolution` (metres per cell) places an image read
-/// without a yaml (default 1.0).
+/// MovingAI `.map`. An image read without a yaml is placed by `resolution`
+/// (metres per cell, default 1.0) and classified by `free_thresh`,
+/// `occupied_thresh` and `negate` (map_server's fields, defaults 0.196,
+/// 0.65 and False), as the command line's `--resolution`, `--free-thresh`,
+/// `--occupied-thresh` and `--negate`.
 ///
-/// Raises OSError if the file cannot be read, ValueError if it is malformed,
-/// with the command line's message naming the file and what is wrong.
+/// Raises OSError if the file cannot be read, ValueError if it is malformed
+/// or a classification option is given for a yaml or MovingAI map, with the
+/// command line's message naming the file and what is wrong. A resolution
+/// the map does not use (a yaml's own stands) is a UserWarning.
 #[pyfunction]
-#[pyo3(signature = (path, *, resolution = None))]
-pub(crate) fn load_map(py: Python<'_>, path: PathBuf, resolution: Option<f64>) -> PyResult<Map> {
+#[pyo3(signature = (path, *, resolution = None, free_thresh = None, occupied_thresh = None, negate = false))]
+pub(crate) fn load_map(
+    py: Python<'_>,
+    path: PathBuf,
+    resolution: Option<f64>,
+    free_thresh: Option<f64>,
+    occupied_thresh: Option<f64>,
+    negate: bool,
+) -> PyResult<Map> {
     let name = path.display().to_string();
-    let grid = detached(py, move || oxcover::pipeline::load_map(&path, resolution))?;
+    let reading = oxcover::pipeline::MapReading {
+        resolution,
+        free_thresh,
+        occupied_thresh,
+        negate,
+    };
+    let (grid, notes) = detached(py, move || {
+        oxcover::pipeline::load_map_with(&path, &reading)
+    })?;
+    let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+    for note in notes {
+        // A note is plain text from our own messages: no NUL inside.
+        let message = std::ffi::CString::new(note).unwrap_or_default();
+        PyErr::warn(py, &category, &message, 1)?;
+    }
     Ok(Map {
         grid: Arc::new(grid),
         name,

@@ -79,6 +79,32 @@ def test_plain_images_load_as_on_the_command_line(cli, tmp_path, image, resoluti
     assert oxcover.plan(m, "boustrophedon").to_csv() == out.read_text()
 
 
+def test_images_are_classified_as_on_the_command_line(cli, tmp_path):
+    """`free_thresh`, `occupied_thresh` and `negate` read an image as the
+    command line's flags do; given for a yaml they are refused alike, and
+    a resolution a yaml does not use is a warning where the command line
+    prints a note."""
+    image = tmp_path / "plan.pgm"
+    image.write_bytes(b"P5\n6 1\n255\n" + bytes([0, 230, 251, 255, 128, 250]))
+    for kwargs in [{}, {"free_thresh": 0.018, "occupied_thresh": 0.018}, {"negate": True}]:
+        args = ["--negate"] if kwargs.get("negate") else flags(kwargs)
+        out = tmp_path / "cli.csv"
+        done = cli("plan", image, "--planner", "dtc", "--out", out, *args)
+        assert done.returncode == 0, done.stderr
+        m = oxcover.load_map(image, **kwargs)
+        assert oxcover.plan(m, "dtc").to_csv() == out.read_text()
+    free = oxcover.load_map(image, free_thresh=0.018, occupied_thresh=0.018).free_mask()
+    assert free.tolist() == [[False, False, True, True, False, False]]
+    yaml = "fixtures/maps/turtlebot_simulator/simple_rooms.yaml"
+    done = cli("info", yaml, "--free-thresh", "0.01")
+    with pytest.raises(ValueError) as e:
+        oxcover.load_map(yaml, free_thresh=0.01)
+    assert str(e.value) == cli_error(done)
+    with pytest.warns(UserWarning, match="is for images read without a yaml"):
+        m = oxcover.load_map(yaml, resolution=2.0)
+    assert m.resolution == 0.05
+
+
 def test_an_exact_search_runs_the_same_from_python(cli, tmp_path):
     """`optimal` refuses the maps above at their sizes; here it plans."""
     args = {"tool_radius": 2.0}

@@ -474,6 +474,30 @@ fn bad_inputs_exit_2_with_one_line() {
             "ending in .svg or .png",
         ),
         (vec!["info", &walls, "--resolution", "abc"], "abc"),
+        (
+            vec!["info", &walls, "--free-thresh", "1.5"],
+            "--free-thresh is `1.5`, expected a number in [0, 1]",
+        ),
+        (
+            vec!["info", &walls, "--occupied-thresh", "NaN"],
+            "--occupied-thresh is `NaN`, expected a number in [0, 1]",
+        ),
+        (
+            vec!["plan", &png_map, "--planner", "dtc", "--free-thresh", "0.7"],
+            "--free-thresh is `0.7`, expected --free-thresh (0.7) at most --occupied-thresh (0.65)",
+        ),
+        (
+            vec!["segment", &good_yaml, "--free-thresh", "0.01"],
+            "is a map_server yaml, whose own fields place and classify its image",
+        ),
+        (
+            vec!["render", &good_yaml, "--out", "r.png", "--negate"],
+            "--negate is `on`, expected an image read without a yaml",
+        ),
+        (
+            vec!["eval", &ragged_map, &ok_csv, "--occupied-thresh", "0.5"],
+            "is a MovingAI map",
+        ),
         (vec!["frobnicate"], "frobnicate"),
         (vec!["explore", &missing], "does-not-exist.yaml"),
         (vec!["explore", &truncated_world], "cut.ron"),

@@ -273,6 +273,89 @@ fn info_planners_and_demo() {
     assert_eq!(report["collisions"], 0);
 }
 
+/// The rows of `oxcover info` as (key, value).
+fn info_rows(args: &[&str]) -> (Vec<(String, String)>, String) {
+    let (out, err) = run(args);
+    let rows = out
+        .lines()
+        .skip(1)
+        .filter_map(|l| {
+            let l = l.trim();
+            let at = l.rfind("  ")?;
+            Some((l[..at].trim().to_string(), l[at..].trim().to_string()))
+        })
+        .collect();
+    (rows, err)
+}
+
+fn row<'a>(rows: &'a [(String, String)], key: &str) -> &'a str {
+    &rows.iter().find(|(k, _)| k == key).expect(key).1
+}
+
+#[test]
+fn images_without_a_yaml_are_classified_as_the_reading_options_say() {
+    // Black wall, light grey (230), near-white (251), white, mid grey (128),
+    // a grey just below the ipa benchmark's cut (250): one row of six pixels.
+    let dir = scratch("thresholds");
+    let pgm = dir.join("plan.pgm");
+    let mut bytes = b"P5\n6 1\n255\n".to_vec();
+    bytes.extend_from_slice(&[0, 230, 251, 255, 128, 250]);
+    std::fs::write(&pgm, bytes).unwrap();
+    let pgm = pgm.display().to_string();
+    let counts = |extra: &[&str]| {
+        let mut args = vec!["info", pgm.as_str()];
+        args.extend_from_slice(extra);
+        let (rows, err) = info_rows(&args);
+        assert!(err.is_empty(), "{err}");
+        ["free", "occupied", "unknown"].map(|k| row(&rows, k).parse::<usize>().unwrap())
+    };
+    // The contract's defaults: p < 0.196 free (v > 205), p > 0.65 occupied.
+    assert_eq!(counts(&[]), [4, 1, 1]);
+    // The ipa benchmark's rule, grey above 250 free and the rest blocked.
+    assert_eq!(
+        counts(&["--free-thresh", "0.018", "--occupied-thresh", "0.018"]),
+        [2, 4, 0]
+    );
+    // Only the free threshold: the rest between it and 0.65 is unknown.
+    assert_eq!(counts(&["--free-thresh", "0.0196"]), [2, 1, 3]);
+    // Negated: dark is free.
+    assert_eq!(counts(&["--negate"]), [1, 4, 1]);
+    // The same reading reaches the planner: by default the free run is
+    // columns 1 to 3 (the mid grey at 4 is unknown, so column 5 is cut
+    // off); read the ipa way, only the white pair at columns 2 and 3.
+    let plan = |extra: &[&str]| {
+        let report = dir.join("report.json");
+        let mut args = vec!["plan", pgm.as_str(), "--planner", "dtc", "--report"];
+        args.push(report.to_str().unwrap());
+        args.extend_from_slice(extra);
+        run(&args);
+        json(&std::fs::read_to_string(&report).unwrap())
+    };
+    let contract = plan(&[]);
+    assert_eq!(contract["coverable_cells"], 3);
+    assert_eq!(contract["parameters"]["start"][0], 1.5);
+    let ipa = plan(&["--free-thresh", "0.018", "--occupied-thresh", "0.018"]);
+    assert_eq!(ipa["coverable_cells"], 2);
+    assert_eq!(ipa["parameters"]["start"][0], 2.5);
+    assert_eq!(ipa["coverage"], 1.0);
+}
+
+#[test]
+fn a_resolution_a_yaml_does_not_use_is_a_note() {
+    let yaml = fixture("turtlebot_simulator/simple_rooms.yaml");
+    let (rows, err) = info_rows(&["info", &yaml, "--resolution", "2"]);
+    assert_eq!(row(&rows, "resolution"), "0.05 m");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.starts_with("note: --resolution 2 is for images read without a yaml;")
+            && err.contains("at 0.05 m per cell"),
+        "{err}"
+    );
+    // Without the option, nothing is said.
+    let (_, err) = info_rows(&["info", &yaml]);
+    assert!(err.is_empty(), "{err}");
+}
+
 #[test]
 fn a_fixed_sweep_angle_is_honoured_and_reported() {
     let dir = scratch("angle");

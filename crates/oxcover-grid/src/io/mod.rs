@@ -21,6 +21,7 @@ pub use ros::{
     read_ros_yaml_from_bytes, ros_map_files, write_ros_map,
 };
 
+use std::io::Read as _;
 use std::path::Path;
 
 use crate::error::{Error, Result, positive};
@@ -89,15 +90,10 @@ impl ReadOptions {
 /// [`Error`] naming the file and what was wrong: unreadable file, malformed
 /// header or yaml field, truncated data, a map larger than the cell limit.
 pub fn read_map(path: &Path, options: &ReadOptions) -> Result<OccupancyGrid> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase)
-        .unwrap_or_default();
-    match ext.as_str() {
-        "yaml" | "yml" => read_ros_yaml(path, options),
-        "map" => read_movingai(path, options),
-        _ => {
+    match MapFormat::by_extension(path) {
+        Some(MapFormat::RosYaml) => read_ros_yaml(path, options),
+        Some(MapFormat::MovingAi) => read_movingai(path, options),
+        Some(MapFormat::Image) | None => {
             let bytes = read_bytes(path)?;
             if looks_like_movingai(&bytes) {
                 return parse_movingai(path, &bytes, options);
@@ -105,6 +101,63 @@ pub fn read_map(path: &Path, options: &ReadOptions) -> Result<OccupancyGrid> {
             read_image_bytes(path, &bytes, options)
         }
     }
+}
+
+/// Which reader [`read_map`] hands a file to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MapFormat {
+    /// A ROS map_server yaml (`.yaml`, `.yml`): its own fields place and
+    /// classify its image.
+    RosYaml,
+    /// A MovingAI `.map` (by extension, or any file that starts `type `).
+    MovingAi,
+    /// A plain PGM, PNG or BMP image, read with [`ReadOptions`]'
+    /// resolution and thresholds.
+    Image,
+}
+
+impl MapFormat {
+    /// The format a file's extension names; `None` where only its content
+    /// can tell (anything but `.yaml`, `.yml` and `.map` is an image unless
+    /// it starts as a MovingAI map).
+    fn by_extension(path: &Path) -> Option<Self> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase)
+            .unwrap_or_default();
+        match ext.as_str() {
+            "yaml" | "yml" => Some(Self::RosYaml),
+            "map" => Some(Self::MovingAi),
+            _ => None,
+        }
+    }
+}
+
+/// The reader [`read_map`] would choose for `path`: by extension, else by
+/// the file's first bytes (only those are read).
+///
+/// # Errors
+/// [`Error::Io`] naming the file where it cannot be opened or read.
+pub fn map_format(path: &Path) -> Result<MapFormat> {
+    if let Some(format) = MapFormat::by_extension(path) {
+        return Ok(format);
+    }
+    let io = |source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let mut head = Vec::with_capacity(MOVINGAI_MAGIC.len());
+    std::fs::File::open(path)
+        .map_err(io)?
+        .take(MOVINGAI_MAGIC.len() as u64)
+        .read_to_end(&mut head)
+        .map_err(io)?;
+    Ok(if looks_like_movingai(&head) {
+        MapFormat::MovingAi
+    } else {
+        MapFormat::Image
+    })
 }
 
 /// Reads a plain image (PGM/PNG/BMP) with the thresholds of `options` (by
@@ -150,8 +203,11 @@ pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>> {
     })
 }
 
+/// How a MovingAI map begins.
+const MOVINGAI_MAGIC: &[u8] = b"type ";
+
 fn looks_like_movingai(bytes: &[u8]) -> bool {
-    bytes.starts_with(b"type ")
+    bytes.starts_with(MOVINGAI_MAGIC)
 }
 
 /// Checks a declared `width × height` against the cell limit before allocating.

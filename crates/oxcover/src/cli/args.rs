@@ -1,6 +1,7 @@
 //! Arguments and loaders shared by several commands: robot radii, on/off
 //! switches, the start position, map loading.
 
+use std::io::Write as _;
 use std::path::Path;
 
 use clap::ValueEnum;
@@ -9,7 +10,7 @@ use oxcover::planners::TimeModel;
 use oxcover::{Error, Result};
 
 pub(crate) use oxcover::output::{ANY, Output, PICTURE, PNG, SVG, YAML, asked, check_outputs};
-pub(crate) use oxcover::pipeline::load_map as load;
+use oxcover::pipeline::{MapReading, load_map_with};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum OnOff {
@@ -25,9 +26,53 @@ pub(crate) struct RobotArgs {
     /// Tool (cleaning/sensing) radius in metres [default: resolution / 2].
     #[arg(long, value_name = "T", allow_negative_numbers = true)]
     pub(crate) tool_radius: Option<f64>,
+    #[command(flatten)]
+    pub(crate) map: MapArgs,
+}
+
+/// How an image read without a yaml is placed and classified (a yaml's own
+/// fields govern its image; a MovingAI map is 1 m per cell).
+#[derive(Debug, clap::Args)]
+pub(crate) struct MapArgs {
     /// Resolution in m/cell for images read without a yaml [default: 1.0].
     #[arg(long, value_name = "M", allow_negative_numbers = true)]
     pub(crate) resolution: Option<f64>,
+    /// For images read without a yaml: free where the occupancy
+    /// p = (255 - v) / 255 is below this (map_server's free_thresh; e.g.
+    /// 0.0196 reads only grey above 250 as free) [default: 0.196].
+    #[arg(long, value_name = "P", allow_negative_numbers = true)]
+    pub(crate) free_thresh: Option<f64>,
+    /// For images read without a yaml: occupied where p is above this
+    /// (map_server's occupied_thresh; between the two is unknown, never
+    /// free) [default: 0.65].
+    #[arg(long, value_name = "P", allow_negative_numbers = true)]
+    pub(crate) occupied_thresh: Option<f64>,
+    /// For images read without a yaml: dark is free, p = v / 255
+    /// (map_server's negate: 1).
+    #[arg(long)]
+    pub(crate) negate: bool,
+}
+
+impl MapArgs {
+    /// The pipeline's reading options.
+    pub(crate) fn reading(&self) -> MapReading {
+        MapReading {
+            resolution: self.resolution,
+            free_thresh: self.free_thresh,
+            occupied_thresh: self.occupied_thresh,
+            negate: self.negate,
+        }
+    }
+}
+
+/// Reads the map as `args` say, printing the reader's notes (an option the
+/// map does not use) on stderr.
+pub(crate) fn load(path: &Path, args: &MapArgs) -> Result<OccupancyGrid> {
+    let (map, notes) = load_map_with(path, &args.reading())?;
+    for note in notes {
+        let _ = writeln!(std::io::stderr(), "note: {note}");
+    }
+    Ok(map)
 }
 
 /// Speeds for the estimated time (`est_time_s`, and what planners optimise).

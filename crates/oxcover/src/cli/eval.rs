@@ -22,7 +22,7 @@ pub(crate) struct EvalArgs {
 }
 
 pub(crate) fn cmd_eval(a: &EvalArgs) -> Result<()> {
-    let map = load(&a.map, a.robot.resolution)?;
+    let map = load(&a.map, &a.robot.map)?;
     let robot = robot_of(&a.robot, &map)?;
     let time = a.time.model()?;
     let points = read_csv(&a.path)?;

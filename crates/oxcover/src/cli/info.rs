@@ -5,22 +5,21 @@ use std::path::PathBuf;
 
 use oxcover::Result;
 use oxcover::grid::components4;
-use oxcover::pipeline::planners;
+use oxcover::pipeline::{metres, planners};
 use oxcover::report::table;
 
-use super::args::{load, map_rows};
+use super::args::{MapArgs, load, map_rows};
 
 #[derive(Debug, clap::Args)]
 pub(crate) struct InfoArgs {
     /// Map file.
     pub(crate) map: PathBuf,
-    /// Resolution in m/cell for images read without a yaml [default: 1.0].
-    #[arg(long, value_name = "M", allow_negative_numbers = true)]
-    pub(crate) resolution: Option<f64>,
+    #[command(flatten)]
+    pub(crate) reading: MapArgs,
 }
 
 pub(crate) fn cmd_info(a: &InfoArgs) -> Result<()> {
-    let map = load(&a.map, a.resolution)?;
+    let map = load(&a.map, &a.reading)?;
     let f = map.frame();
     let (lo, hi) = f.bounds();
     let free = map.free_mask();
@@ -40,7 +39,10 @@ pub(crate) fn cmd_info(a: &InfoArgs) -> Result<()> {
     }
     if let Some(s) = free.true_cells().next() {
         let p = f.cell_center(s);
-        rows.push(("default start".into(), format!("{},{}", p.x, p.y)));
+        rows.push((
+            "default start".into(),
+            format!("{},{}", metres(p.x), metres(p.y)),
+        ));
     }
     let mut out = super::out::stdout();
     let _ = writeln!(out, "{}", a.map.display());

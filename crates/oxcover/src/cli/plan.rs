@@ -81,7 +81,7 @@ pub(crate) fn plan_outputs(a: &PlanArgs) -> Vec<Output<'_>> {
 /// The map and the plan request the `plan` options describe.
 pub(crate) fn map_and_request(a: &PlanArgs) -> Result<(OccupancyGrid, PlanRequest)> {
     check_outputs(&[&a.map], &plan_outputs(a))?;
-    let map = load(&a.map, a.robot.resolution)?;
+    let map = load(&a.map, &a.robot.map)?;
     let robot = robot_of(&a.robot, &map)?;
     let time = a.time.model()?;
     let mut options = PlannerOptions::new();

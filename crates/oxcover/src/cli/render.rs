@@ -29,7 +29,7 @@ pub(crate) fn cmd_render(a: &RenderArgs) -> Result<()> {
     let mut inputs = vec![a.map.as_path()];
     inputs.extend(a.path.as_deref());
     check_outputs(&inputs, &[("--out", &a.out, PICTURE)])?;
-    let map = load(&a.map, a.robot.resolution)?;
+    let map = load(&a.map, &a.robot.map)?;
     let name = short_name(&a.map.display().to_string());
     match &a.path {
         Some(path_file) => {

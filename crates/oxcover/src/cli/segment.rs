@@ -10,7 +10,7 @@ use oxcover::report::table;
 use oxcover::rooms::{Method, SegmentOptions, door_overlay, report, scene, segment};
 use oxcover::{Error, Result};
 
-use super::args::{PNG, SVG, asked, check_outputs, load};
+use super::args::{MapArgs, PNG, SVG, asked, check_outputs, load};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum MethodArg {
@@ -28,9 +28,8 @@ pub(crate) struct SegmentArgs {
     /// Segmentation method.
     #[arg(long, value_enum, default_value_t = MethodArg::Voronoi)]
     pub(crate) method: MethodArg,
-    /// Resolution in m/cell for images read without a yaml [default: 1.0].
-    #[arg(long, value_name = "M", allow_negative_numbers = true)]
-    pub(crate) resolution: Option<f64>,
+    #[command(flatten)]
+    pub(crate) reading: MapArgs,
     /// Smallest room in m² (morphological: what erosion leaves of a room;
     /// voronoi: smaller regions join a neighbour).
     #[arg(
@@ -80,7 +79,7 @@ pub(crate) fn cmd_segment(a: &SegmentArgs) -> Result<()> {
             .map(str::to_ascii_lowercase)
             .unwrap_or_default()
     });
-    let map = load(&a.map, a.resolution)?;
+    let map = load(&a.map, &a.reading)?;
     let options = SegmentOptions {
         method: match a.method {
             MethodArg::Morphological => Method::Morphological,
