@@ -354,6 +354,28 @@ fn a_resolution_a_yaml_does_not_use_is_a_note() {
     // Without the option, nothing is said.
     let (_, err) = info_rows(&["info", &yaml]);
     assert!(err.is_empty(), "{err}");
+    // A command that fails after the map is read says only its error: the
+    // note waits for success.
+    let out = Command::new(bin())
+        .args([
+            "plan",
+            &yaml,
+            "--planner",
+            "dtc",
+            "--resolution",
+            "2",
+            "--start",
+            "0,0",
+        ])
+        .output()
+        .expect("run oxcover");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.starts_with("oxcover: error: start (0, 0) is not admissible"),
+        "{err}"
+    );
 }
 
 #[test]

@@ -1,8 +1,8 @@
 //! Arguments and loaders shared by several commands: robot radii, on/off
 //! switches, the start position, map loading.
 
-use std::io::Write as _;
 use std::path::Path;
+use std::sync::{Mutex, PoisonError};
 
 use clap::ValueEnum;
 use oxcover::grid::{DiscRobot, OccupancyGrid, Point};
@@ -65,13 +65,24 @@ impl MapArgs {
     }
 }
 
-/// Reads the map as `args` say, printing the reader's notes (an option the
-/// map does not use) on stderr.
+/// Notes of the command under way (an option the map does not use), kept
+/// until it has succeeded: a failed command's stderr stays its one error
+/// line.
+static NOTES: Mutex<Vec<String>> = Mutex::new(Vec::new());
+
+/// Takes the notes kept so far ([`load`]'s), leaving none.
+pub(crate) fn take_notes() -> Vec<String> {
+    std::mem::take(&mut *NOTES.lock().unwrap_or_else(PoisonError::into_inner))
+}
+
+/// Reads the map as `args` say; the reader's notes (an option the map does
+/// not use) are kept for the end of a command that succeeds.
 pub(crate) fn load(path: &Path, args: &MapArgs) -> Result<OccupancyGrid> {
     let (map, notes) = load_map_with(path, &args.reading())?;
-    for note in notes {
-        let _ = writeln!(std::io::stderr(), "note: {note}");
-    }
+    NOTES
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .extend(notes);
     Ok(map)
 }
 

@@ -109,6 +109,7 @@ where
         Ok(cli) => cli,
         Err(e) => return clap_error(&e),
     };
+    let _ = args::take_notes();
     let result = match cli.command {
         None => demo::run(),
         Some(Command::Plan(a)) => plan::cmd_plan(&a),
@@ -124,9 +125,15 @@ where
         Some(Command::Explore(a)) => explore::cmd_explore(&a),
         Some(Command::MapFromCamera(a)) => camera::cmd_map_from_camera(&a),
     };
+    let notes = args::take_notes();
     match result {
         Ok(()) => match out::failure() {
-            None => 0,
+            None => {
+                for note in notes {
+                    let _ = writeln!(std::io::stderr(), "note: {note}");
+                }
+                0
+            }
             Some(e) => {
                 let _ = writeln!(
                     std::io::stderr(),
