@@ -118,12 +118,15 @@ impl MapReading {
             } else {
                 ("--occupied-thresh", occupied_thresh)
             };
+            let default = match (self.free_thresh, self.occupied_thresh) {
+                (Some(_), Some(_)) => "",
+                _ => "; the one not given keeps its default",
+            };
             return Err(Error::BadParameter {
                 name,
                 value: value.to_string(),
                 expected: format!(
-                    "--free-thresh ({free_thresh}) at most --occupied-thresh ({occupied_thresh}); \
-                     the one not given keeps its default"
+                    "--free-thresh ({free_thresh}) at most --occupied-thresh ({occupied_thresh}){default}"
                 ),
             });
         }

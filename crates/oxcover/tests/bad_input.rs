@@ -487,6 +487,17 @@ fn bad_inputs_exit_2_with_one_line() {
             "--free-thresh is `0.7`, expected --free-thresh (0.7) at most --occupied-thresh (0.65)",
         ),
         (
+            vec![
+                "info",
+                &walls,
+                "--free-thresh",
+                "0.5",
+                "--occupied-thresh",
+                "0.3",
+            ],
+            "--free-thresh is `0.5`, expected --free-thresh (0.5) at most --occupied-thresh (0.3)\n",
+        ),
+        (
             vec!["segment", &good_yaml, "--free-thresh", "0.01"],
             "is a map_server yaml, whose own fields place and classify its image",
         ),
