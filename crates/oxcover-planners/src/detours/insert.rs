@@ -88,7 +88,7 @@ impl SegmentBuckets {
 /// `points` with detours inserted until every coverable cell is within
 /// `reach` of the path or no clear detour within `search` reaches it
 /// without uncovering another. Returns the new path and, for each cell,
-/// how many of its segments reach it (for [`tighten_from`]).
+/// how many of its segments reach it (for [`super::tighten_from`]).
 pub(crate) fn insert_detours(points: &[GridPoint], d: &Detours<'_>) -> (Vec<GridPoint>, Grid<u16>) {
     let (w, h) = (d.plannable.width(), d.plannable.height());
     let mut count = reach_counts(points, d);

@@ -293,7 +293,7 @@ pub(crate) fn reach_counts(points: &[GridPoint], d: &Detours<'_>) -> Grid<u16> {
 }
 
 /// A band of whole rows of a reach count grid: all of it, or the rows one
-/// strip of a parallel [`tighten_from`] round may change. Indexed by the
+/// strip of a parallel [`super::tighten_from`] round may change. Indexed by the
 /// whole grid's row-major index; a cell outside the band is a bug (the
 /// index panics).
 pub(super) struct Counts<'a> {

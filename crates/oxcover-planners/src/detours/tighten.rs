@@ -64,12 +64,12 @@ impl Zone<'_> {
 /// along one of its pieces ([`SLIDES`]), whichever saves the most
 /// estimated time while clear, within its `zone` if one is given, and
 /// leaving no coverable cell the path reached out of reach (the same
-/// sample-exact counts as [`insert_detours`]); [`ROUNDS`] passes. The
+/// sample-exact counts as [`super::insert_detours`]); [`ROUNDS`] passes. The
 /// vertices before `first` stay where they are, and still count for
 /// coverage. After detours, some straightened corners and staircase
 /// vertices are no longer needed and many are sharper than coverage
 /// requires. `count` is how many segments of `points` reach each cell, as
-/// [`insert_detours`] or [`reach_counts`] returns it. Returns the new
+/// [`super::insert_detours`] or [`super::reach_counts`] returns it. Returns the new
 /// path, the index in `points` of each vertex kept (in order) and the
 /// number of vertices removed or moved.
 pub(crate) fn tighten_from(
@@ -100,7 +100,7 @@ pub(crate) struct Tightening {
 }
 
 impl Tightening {
-    /// `points` before any pass, with `count` as [`reach_counts`] finds it;
+    /// `points` before any pass, with `count` as [`super::reach_counts`] finds it;
     /// the vertices before `first` stay.
     pub(crate) fn new(points: &[GridPoint], count: Grid<u16>, first: usize) -> Self {
         Self {
@@ -429,7 +429,7 @@ fn try_replace(
 
 /// How far beyond the triangle of a vertex and its neighbours the cells
 /// [`try_replace`] tests at once must be clear (cells): far more than a
-/// move's [`EDGE_GAP`] and the traversal's rounding.
+/// move's [`super::geometry::EDGE_GAP`] and the traversal's rounding.
 const TRIANGLE_MARGIN: f64 = 1e-3;
 
 /// The centres of the coverable cells that the pieces `u → old… → x` reach
