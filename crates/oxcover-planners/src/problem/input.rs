@@ -7,7 +7,7 @@ use oxcover_grid::{Cell, CoarseGrid, Grid, MapFrame, Point};
 use crate::error::{Error, Result};
 use crate::time::TimeModel;
 
-/// A way between two places ([`CoverageProblem::transit`]).
+/// A way between two places ([`super::CoverageProblem::transit`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Transit {
     /// The 4-connected plannable cells, both ends included.
@@ -39,7 +39,7 @@ impl PlanOutput {
     }
 }
 
-/// The coverage problem as a planner sees it; made by [`CoverageProblem::input`].
+/// The coverage problem as a planner sees it; made by [`super::CoverageProblem::input`].
 #[derive(Clone, Copy, Debug)]
 #[non_exhaustive]
 pub struct PlannerInput<'a> {
@@ -69,7 +69,7 @@ pub struct PlannerInput<'a> {
     pub time: TimeModel,
     /// Where the robot goes next, if known (room by room: the cell of this
     /// room nearest the next room): a planner may end its path near it.
-    /// `None` from [`CoverageProblem::input`]; the pipeline sets it.
+    /// `None` from [`super::CoverageProblem::input`]; the pipeline sets it.
     pub exit: Option<Cell>,
     /// Plannable cells of the whole plan this input is part of: its own
     /// when planned alone, the map's when the pipeline plans room by room.
@@ -94,10 +94,10 @@ impl PlannerInput<'_> {
         (self.coarse.block_size() as f64 / 2.0).min(self.tool_cells)
     }
 
-    /// See [`CoverageProblem::expand`].
+    /// See [`super::CoverageProblem::expand`].
     ///
     /// # Errors
-    /// As [`CoverageProblem::expand`].
+    /// As [`super::CoverageProblem::expand`].
     pub fn expand(&self, output: &PlanOutput) -> Result<Vec<Cell>> {
         let path = match output {
             PlanOutput::Fine(v) => return Ok(v.clone()),

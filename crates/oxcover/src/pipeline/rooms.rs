@@ -1,0 +1,155 @@
+//! Room by room: the room units (the medial-axis rooms cut into connected
+//! drivable parts, small ones joined to a neighbour), visited in the order
+//! of least transit, each finished before the robot leaves it, and the
+//! whole path tightened at the end with each room's waypoints kept in
+//! their room.
+
+use std::time::Instant;
+
+use oxcover_decomp::{RoomParams, Rooms, voronoi};
+use oxcover_grid::{Cell, Grid, OccupancyGrid, Point};
+use oxcover_planners::{
+    ANY_UNIT, BoundaryRoute, CoverageProblem, RoomUnits, room_order, unit_claims, unit_exits,
+};
+
+use super::region::{
+    KnownCoverage, finish, pass_flags, pass_length, plan_region, start_prefix, tighten_plan,
+};
+use super::request::{PlanOutcome, PlanRequest, RoomStretch};
+use crate::error::Result;
+
+/// Plannable area (m²) below which a room unit joins a neighbour: a
+/// closet or a nook cut off by furniture is covered with the room beside
+/// it (planned alone, its own loop, entry and exit cost more than it
+/// saves: measured on the ipa floor plans, `docs/efficiency.md`).
+pub const MIN_UNIT_M2: f64 = 6.0;
+
+/// The room units of `problem` on `map`: the medial-axis segmentation of
+/// the free cells with indoor defaults ([`oxcover_decomp::voronoi`],
+/// [`RoomParams::indoor`]: rooms end at doors up to 1.6 m wide), split into
+/// connected plannable parts, parts smaller than [`MIN_UNIT_M2`] of
+/// plannable area (and at least four coverage cells) merged into a
+/// neighbour.
+///
+/// Not the morphological segmentation: it also cuts open halls into pieces
+/// of at most 47 m², and planning such pieces one by one took longer than
+/// planning the hall at once on most ROS maps (`docs/efficiency.md`).
+#[must_use]
+pub fn room_units(map: &OccupancyGrid, problem: &CoverageProblem) -> RoomUnits {
+    units_of(problem, &room_labels(map))
+}
+
+/// The rooms [`super::room_units`] splits: the medial-axis segmentation of `map`'s
+/// free cells with indoor defaults.
+pub(super) fn room_labels(map: &OccupancyGrid) -> Rooms {
+    voronoi(&map.free_mask(), &RoomParams::indoor(map.resolution()))
+}
+
+/// Whether the `plannable` cells carry more than one room label.
+pub(super) fn in_several_rooms(plannable: &Grid<bool>, labels: &Grid<u32>) -> bool {
+    let mut seen = None;
+    plannable
+        .as_slice()
+        .iter()
+        .zip(labels.as_slice())
+        .filter(|&(&p, _)| p)
+        .any(|(_, &l)| *seen.get_or_insert(l) != l)
+}
+
+/// The units of `rooms` for `problem` (see [`super::room_units`]).
+pub(super) fn units_of(problem: &CoverageProblem, rooms: &Rooms) -> RoomUnits {
+    let block = problem.block();
+    let res = problem.frame().resolution();
+    let min = ((MIN_UNIT_M2 / (res * res)) as usize).max(4 * block * block);
+    RoomUnits::new(problem.plannable(), &rooms.labels, min)
+}
+
+/// Plans unit by unit in the order of [`oxcover_planners::room_order`].
+pub(super) fn plan_rooms(
+    problem: &CoverageProblem,
+    units: &RoomUnits,
+    request: &PlanRequest,
+    t0: Instant,
+) -> Result<PlanOutcome> {
+    let order = room_order(problem, units);
+    let exits = unit_exits(problem, units, &order);
+    let claims = unit_claims(problem, units);
+    let plan_cells = problem.plannable().count_true();
+    let mut points: Vec<Point> = Vec::new();
+    let mut cells: Vec<Cell> = Vec::new();
+    let mut raws = Vec::new();
+    let mut boundary: Option<BoundaryRoute> = None;
+    let mut in_pass: Vec<bool> = Vec::new();
+    let mut here = problem.start_cell();
+    let mut stretches = Vec::with_capacity(order.len());
+    let mut wave = problem.transit_wavefront();
+    for (i, &u) in order.iter().enumerate() {
+        let (entry, prefix) = if i == 0 {
+            (here, start_prefix(problem))
+        } else {
+            let t = problem.transit_reusing(&mut wave, here, |c| units.labels[c] == u)?;
+            let entry = t.cells.last().copied().unwrap_or(here);
+            cells.extend(t.cells.iter().skip(1).copied());
+            let mut prefix = t.points;
+            prefix.pop();
+            (entry, prefix)
+        };
+        let prefix_len = prefix.len();
+        let claimed = claims.map(|&l| l == u || l == ANY_UNIT);
+        let sub = problem.restricted_claiming(&units.mask(u), entry, Some(&claimed))?;
+        let exit = exits[i].and_then(|c| sub.from_map_cell(c));
+        let mut region = plan_region(&sub, request, prefix, exit, Some(plan_cells))?;
+        for c in &mut region.cells {
+            *c = sub.to_map_cell(*c);
+        }
+        region.end = sub.to_map_cell(region.end);
+        for (p, pass) in region.points.iter().zip(pass_flags(&region)) {
+            if points.last() != Some(p) {
+                points.push(*p);
+                in_pass.push(pass);
+            }
+        }
+        // The unit's own work: the last points, after its transit.
+        let work = region.points.len() - prefix_len.min(region.points.len());
+        stretches.push(RoomStretch {
+            unit: u,
+            points: points.len().saturating_sub(work)..points.len(),
+        });
+        cells.extend(region.cells.iter().skip(usize::from(i > 0)).copied());
+        raws.push(region.raw);
+        if let Some(b) = region.boundary {
+            let total = boundary.get_or_insert(BoundaryRoute {
+                cells: Vec::new(),
+                points: Vec::new(),
+                pending: 0,
+                anchors: 0,
+            });
+            total.pending += b.pending;
+            total.anchors += b.anchors;
+            total.cells.extend(b.cells);
+            total.points.extend(b.points);
+        }
+        here = region.end;
+    }
+    let (points, stretches, covered, in_pass) =
+        tighten_plan(problem, Some(units), points, stretches, in_pass);
+    let boundary_length_m = pass_length(&points, &in_pass);
+    let plan_ms = t0.elapsed().as_secs_f64() * 1e3;
+    // Each room's own coverage is on its room's grid: the map's is found
+    // afresh.
+    let known = KnownCoverage {
+        raws: None,
+        path: covered,
+    };
+    finish(
+        problem,
+        request,
+        points,
+        cells,
+        (&raws, known),
+        boundary,
+        boundary_length_m,
+        stretches,
+        plan_ms,
+    )
+}
