@@ -4,8 +4,11 @@
 //! robot and tool radii. Heavier than unit tests: the README's test command
 //! runs them in release.
 
+use std::sync::Arc;
+
 use oxcover::metrics::{MetricParams, evaluate};
 use oxcover::pipeline::{PlanRequest, plan, planners};
+use oxcover::planners::lanes::{LaneStages, Lanes};
 use oxcover_grid::random::{blobs, random_density, rectangles};
 use oxcover_grid::{DiscRobot, OccupancyGrid, Point};
 use proptest::prelude::*;
@@ -39,11 +42,21 @@ fn check_with(
     complete: bool,
     rooms: bool,
 ) -> Result<(), TestCaseError> {
-    let mut req = PlanRequest::new(name, map.resolution())
-        .map_err(|e| TestCaseError::fail(e.to_string()))?
-        .robot(robot)
-        .boundary_pass(false)
-        .rooms(rooms);
+    let req =
+        PlanRequest::new(name, map.resolution()).map_err(|e| TestCaseError::fail(e.to_string()))?;
+    check_request(map, robot, req, name, complete, rooms)
+}
+
+/// [`check_with`] for the planner of `req` (`name` in messages).
+fn check_request(
+    map: &OccupancyGrid,
+    robot: DiscRobot,
+    req: PlanRequest,
+    name: &str,
+    complete: bool,
+    rooms: bool,
+) -> Result<(), TestCaseError> {
+    let mut req = req.robot(robot).boundary_pass(false).rooms(rooms);
     let out = match plan(map, &req) {
         Ok(o) => o,
         Err(oxcover::Error::Map(
@@ -119,6 +132,31 @@ proptest! {
             ("lanes", true),
         ] {
             check(&map, robot, name, complete)?;
+        }
+    }
+
+    /// `lanes` with one of its stages off (as the stage table of
+    /// `docs/efficiency.md` plans it) stays clear and, with the boundary
+    /// pass, complete.
+    #[test]
+    fn lanes_with_a_stage_off_stays_clear_and_complete(
+        kind in 0u8..3, w in 12usize..70, h in 12usize..70, seed in any::<u64>(),
+        res in prop::sample::select(vec![0.05, 1.0]),
+        robot_cells in 0.0f64..3.0, tool_cells in 0.3f64..4.0, stage in 0usize..9,
+    ) {
+        let map = random_map(kind, w, h, seed, res);
+        let robot = DiscRobot::new(robot_cells * res, tool_cells * res).unwrap();
+        let mut stages = LaneStages::ALL;
+        let off = [
+            &mut stages.straighten_loops, &mut stages.inset_lines, &mut stages.every_angle,
+            &mut stages.build_several, &mut stages.rehatch, &mut stages.islands,
+            &mut stages.improve_order, &mut stages.detours, &mut stages.tighten,
+        ];
+        *off.into_iter().nth(stage).unwrap() = false;
+        let planner = Arc::new(Lanes::new().with_stages(stages));
+        for rooms in [false, true] {
+            let req = PlanRequest::with_planner(planner.clone(), map.resolution());
+            check_request(&map, robot, req, &format!("lanes {stages:?}"), true, rooms)?;
         }
     }
 

@@ -15,6 +15,7 @@ use std::f64::consts::PI;
 
 use rayon::prelude::*;
 
+use super::LaneStages;
 use super::layout::{Chain, Layout, modelled_time};
 use super::loops::EdgeLoop;
 
@@ -61,7 +62,12 @@ impl Angles {
     /// The angles for a region with edge loops `loops`: `angle_deg` alone
     /// (degrees, map frame) where given; the grid's axes for a `narrow`
     /// tool (under a cell); else the wall directions and every 15°.
-    pub(super) fn new(loops: &[EdgeLoop], angle_deg: Option<f64>, narrow: bool) -> Self {
+    pub(super) fn new(
+        loops: &[EdgeLoop],
+        angle_deg: Option<f64>,
+        narrow: bool,
+        stages: &LaneStages,
+    ) -> Self {
         let wall = wall_angle(loops);
         let candidates: Vec<f64> = match angle_deg {
             // Grid rows grow downwards: a map-frame angle a is -a here.
@@ -69,7 +75,9 @@ impl Angles {
             None if narrow => vec![0.0, PI / 2.0],
             None => {
                 let mut v = vec![wall, wall + PI / 2.0];
-                v.extend((0..12).map(|k| f64::from(k) * PI / 12.0));
+                if stages.every_angle {
+                    v.extend((0..12).map(|k| f64::from(k) * PI / 12.0));
+                }
                 v
             }
         };
@@ -88,7 +96,13 @@ impl Angles {
     /// built. A plan of `plan_cells` plannable cells small enough to build
     /// more than [`ANGLES_BUILT`] orders and builds that many, whatever
     /// the model thinks of them.
-    pub(super) fn near_ties(&self, layout: &Layout<'_>, plan_cells: usize) -> (Vec<Scored>, usize) {
+    /// With `several` off, the model's best alone is ordered and built.
+    pub(super) fn near_ties(
+        &self,
+        layout: &Layout<'_>,
+        plan_cells: usize,
+        several: bool,
+    ) -> (Vec<Scored>, usize) {
         let area = layout.mask.cells.count_true() as f64;
         let score = |(i, &theta): (usize, &f64)| {
             let (chains, step) = layout.chains(theta);
@@ -103,7 +117,9 @@ impl Angles {
         scored.sort_by(|a, b| a.cost.total_cmp(&b.cost));
         let cheapest = scored.first().map_or(0.0, |b| b.cost);
         let affordable = (BUILD_BUDGET / plan_cells.max(1)).min(scored.len());
-        let (ordered, built, tie) = if affordable > ANGLES_BUILT {
+        let (ordered, built, tie) = if !several {
+            (1, 1, NEAR_TIE)
+        } else if affordable > ANGLES_BUILT {
             (affordable, affordable, f64::INFINITY)
         } else {
             (ANGLES_ORDERED, ANGLES_BUILT, NEAR_TIE)

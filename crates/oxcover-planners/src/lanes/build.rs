@@ -17,11 +17,14 @@ use rayon::prelude::*;
 use oxcover_grid::traverse::GridPoint;
 use oxcover_grid::{Cell, Point};
 
+use super::LaneStages;
 use super::islands::{Splice, drive_chain};
 use super::loops::{EdgeLoop, drive_loop, loop_tolerance};
 use super::nodes::{Node, nodes_of};
 use super::order::Ordered;
-use crate::detours::{Detours, Tightening, insert_detours, metric_reach, polyline_time};
+use crate::detours::{
+    Detours, Tightening, insert_detours, metric_reach, polyline_time, reach_counts,
+};
 use crate::error::{Error, Result};
 use crate::metre_path::PathBuilder;
 use crate::problem::PlannerInput;
@@ -49,6 +52,7 @@ pub(super) struct Builder<'a, 'r> {
     loop_tolerance: f64,
     /// Speeds in cells per second.
     time: TimeModel,
+    stages: LaneStages,
 }
 
 impl<'a, 'r> Builder<'a, 'r> {
@@ -64,6 +68,7 @@ impl<'a, 'r> Builder<'a, 'r> {
         exit: Option<GridPoint>,
         tool: f64,
         time: TimeModel,
+        stages: LaneStages,
     ) -> Self {
         let (reach, fragile) = metric_reach(input.tool_cells);
         let detours = Detours {
@@ -80,8 +85,13 @@ impl<'a, 'r> Builder<'a, 'r> {
             start,
             exit,
             detours,
-            loop_tolerance: loop_tolerance(tool),
+            loop_tolerance: if stages.straighten_loops {
+                loop_tolerance(tool)
+            } else {
+                0.0
+            },
             time,
+            stages,
         }
     }
 
@@ -127,11 +137,19 @@ impl<'a, 'r> Builder<'a, 'r> {
         behind: &(impl Fn(f64) -> bool + Sync),
     ) -> Result<Built<'a>> {
         let mut path = self.drive(o)?;
-        let (points, count) = insert_detours(path.points(), &self.detours);
+        let (points, count) = if self.stages.detours {
+            insert_detours(path.points(), &self.detours)
+        } else {
+            let points = path.points().to_vec();
+            let count = reach_counts(&points, &self.detours);
+            (points, count)
+        };
         // Then the vertices detours made unneeded go, and the rest move
         // towards the line of their neighbours, where coverage allows.
         let mut tightening = Tightening::new(&points, count, 0);
-        tightening.pass(&self.detours, None);
+        if self.stages.tighten {
+            tightening.pass(&self.detours, None);
+        }
         let first = polyline_time(&tightening.points(), &self.time);
         // Set once, here only.
         let _ = first_pass.set(first);
@@ -139,7 +157,7 @@ impl<'a, 'r> Builder<'a, 'r> {
             if behind(first) {
                 return Ok((first, None));
             }
-            if !tightening.pass(&self.detours, None) {
+            if !self.stages.tighten || !tightening.pass(&self.detours, None) {
                 break;
             }
         }

@@ -68,13 +68,15 @@ impl<'a> Layout<'a> {
     /// The layout for a tool of `tool` cells: lines one tool width apart,
     /// less the margin of the contract's samples (a quarter of a cell
     /// apart along the path); through the cell centres, a row or column
-    /// apart, for a tool under a cell.
+    /// apart, for a tool under a cell. The outermost lines are inset to
+    /// meet the loops' reach if `inset_lines`.
     pub(super) fn new(
         plannable: &'a Grid<bool>,
         mask: &'a LaneMask,
         islands: Option<&'a Grid<bool>>,
         tool: f64,
         time: &'a TimeModel,
+        inset_lines: bool,
     ) -> Self {
         let narrow = tool < 1.0;
         let spacing = if narrow {
@@ -89,7 +91,7 @@ impl<'a> Layout<'a> {
         // from the wall): a line less along every wall. A room cut, where
         // no loop runs, is a cell from the claimed cells' edge: the line
         // still reaches past it.
-        let inset = if narrow {
+        let inset = if narrow || !inset_lines {
             0.0
         } else {
             (tool - OUTSET - LINE_MARGIN).max(0.0)

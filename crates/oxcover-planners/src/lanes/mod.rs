@@ -65,17 +65,90 @@ use crate::problem::{PlanOutput, PlannerInput};
 use crate::time::TimeModel;
 
 /// The `lanes` planner.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Lanes {
     /// Fixed lane angle in degrees (map frame); `None` = fastest per region.
     angle_deg: Option<f64>,
+    stages: LaneStages,
+}
+
+/// The stages of `lanes` that can be turned off, to measure what each
+/// buys (`cargo xtask efficiency`, `docs/efficiency.md`). All on by
+/// default, as the registry's `lanes` plans; with any off the path is still
+/// complete and never leaves the plannable cells (what a stage would have
+/// covered is left to the last pass and the boundary pass).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[allow(clippy::struct_excessive_bools)]
+pub struct LaneStages {
+    /// Edge loops straightened within a fraction of a cell (off: every
+    /// boundary cell's point is a waypoint).
+    pub straighten_loops: bool,
+    /// The outermost lines moved in to where their reach meets the loops'
+    /// (off: lines spread over the whole lane mask).
+    pub inset_lines: bool,
+    /// Every 15° tried besides the wall directions (off: the two wall
+    /// directions only).
+    pub every_angle: bool,
+    /// The best few angles built to the end and compared on the finished
+    /// path (off: the model's best alone).
+    pub build_several: bool,
+    /// Chains whose area one angle does not suit hatched again.
+    pub rehatch: bool,
+    /// Lanes run past small islands and drive their loops (off: every
+    /// island cuts the lanes and its loop is a node of the order).
+    pub islands: bool,
+    /// The order improved by 2-opt and the exact choice of entries (off:
+    /// the nearest-neighbour order alone).
+    pub improve_order: bool,
+    /// Cells passed just out of reach covered by the cheapest detours.
+    pub detours: bool,
+    /// The path tightened for time.
+    pub tighten: bool,
+}
+
+impl LaneStages {
+    /// Every stage on (the planner as the registry gives it).
+    pub const ALL: Self = Self {
+        straighten_loops: true,
+        inset_lines: true,
+        every_angle: true,
+        build_several: true,
+        rehatch: true,
+        islands: true,
+        improve_order: true,
+        detours: true,
+        tighten: true,
+    };
+}
+
+impl Default for LaneStages {
+    fn default() -> Self {
+        Self::ALL
+    }
+}
+
+impl Default for Lanes {
+    fn default() -> Self {
+        Self::new()
+    }
 }
 
 impl Lanes {
-    /// Lanes at each region's fastest angle.
+    /// Lanes at each region's fastest angle, every stage on.
     #[must_use]
     pub const fn new() -> Self {
-        Self { angle_deg: None }
+        Self {
+            angle_deg: None,
+            stages: LaneStages::ALL,
+        }
+    }
+
+    /// The same planner with only the stages `stages` on (for experiments:
+    /// what each stage buys).
+    #[must_use]
+    pub const fn with_stages(mut self, stages: LaneStages) -> Self {
+        self.stages = stages;
+        self
     }
 
     /// Lanes at a fixed angle (degrees, counter-clockwise from the map's x axis).
@@ -106,14 +179,19 @@ impl Planner for Lanes {
     }
 
     fn plan(&self, input: &PlannerInput<'_>) -> Result<PlanOutput> {
-        let plan = plan_lanes(input, self.angle_deg)?;
+        let plan = plan_lanes(input, self.angle_deg, &self.stages)?;
         Ok(PlanOutput::Metres(plan))
     }
 }
 
 /// The `lanes` path of `input`'s region (metres, map frame), its lanes at
-/// `angle_deg` (degrees, map frame) if given, else at each part's fastest.
-fn plan_lanes(input: &PlannerInput<'_>, angle_deg: Option<f64>) -> Result<Vec<Point>> {
+/// `angle_deg` (degrees, map frame) if given, else at each part's fastest,
+/// with the stages `stages` on.
+fn plan_lanes(
+    input: &PlannerInput<'_>,
+    angle_deg: Option<f64>,
+    stages: &LaneStages,
+) -> Result<Vec<Point>> {
     let plannable = input.plannable;
     let start = start_cell(input)?;
     let tool = input.tool_cells.max(0.5);
@@ -127,16 +205,23 @@ fn plan_lanes(input: &PlannerInput<'_>, angle_deg: Option<f64>) -> Result<Vec<Po
         || {
             rayon::join(
                 || LaneMask::new(plannable, input.admissible, tool),
-                || (!narrow).then(|| island_masks(plannable, tool)),
+                || (!narrow && stages.islands).then(|| island_masks(plannable, tool)),
             )
         },
     );
     // Islands that lanes pass, and islands whose loops lanes drive.
     let (passed, spliced) = islands.unzip();
-    let layout = Layout::new(plannable, &lane_mask, passed.as_ref(), tool, &time);
+    let layout = Layout::new(
+        plannable,
+        &lane_mask,
+        passed.as_ref(),
+        tool,
+        &time,
+        stages.inset_lines,
+    );
     // Every candidate angle's chains, modelled; the best few go on.
-    let angles = Angles::new(&loops, angle_deg, narrow);
-    let (near_ties, built) = angles.near_ties(&layout, input.plan_cells);
+    let angles = Angles::new(&loops, angle_deg, narrow, stages);
+    let (near_ties, built) = angles.near_ties(&layout, input.plan_cells, stages.build_several);
     // Each of them re-hatched where one angle does not suit a part (a fixed
     // angle is kept everywhere), its islands spliced into its lanes, and
     // its loops and chains ordered (in parallel, each with its own transit
@@ -145,7 +230,7 @@ fn plan_lanes(input: &PlannerInput<'_>, angle_deg: Option<f64>) -> Result<Vec<Po
     let exit = input.exit.filter(|&c| plannable.is_set(c)).map(cell_center);
     let ends = (cell_center(start), exit);
     let order_angle = |region: &mut Region<'_>, tie: angles::Scored| {
-        let (chains, saving) = if angle_deg.is_none() {
+        let (chains, saving) = if angle_deg.is_none() && stages.rehatch {
             hatch.rehatch(tie.chains, tie.step, &angles.walls)
         } else {
             (tie.chains, 0.0)
@@ -154,7 +239,7 @@ fn plan_lanes(input: &PlannerInput<'_>, angle_deg: Option<f64>) -> Result<Vec<Po
             splices_for(&loops, &chains, isl, plannable, layout.spacing)
         });
         let nodes = nodes_of(&loops, &chains, &splices);
-        let (tour, transit) = order_nodes(&nodes, ends, region, &time);
+        let (tour, transit) = order_nodes(&nodes, ends, region, &time, stages.improve_order);
         Ordered {
             time: tie.cost - saving + transit,
             chains,
@@ -168,7 +253,7 @@ fn plan_lanes(input: &PlannerInput<'_>, angle_deg: Option<f64>) -> Result<Vec<Po
         .collect();
     ordered.sort_by(|a, b| a.time.total_cmp(&b.time));
     // The best few driven to the end (detours, tightening); the fastest kept.
-    let builder = Builder::new(input, &loops, start, exit, tool, time);
+    let builder = Builder::new(input, &loops, start, exit, tool, time, *stages);
     builder.fastest(&ordered[..built.min(ordered.len())])
 }
 

@@ -31,12 +31,14 @@ const TWO_OPT_LIMIT: usize = 600;
 pub(super) type Tour = Vec<(usize, usize)>;
 
 /// Order and entry options of `nodes` from `start`, minimising estimated
-/// transit time ([`Transits`]; a generalised TSP).
+/// transit time ([`Transits`]; a generalised TSP); the nearest-neighbour
+/// order alone unless `improve`.
 pub(super) fn order_nodes(
     nodes: &[Node<'_>],
     ends: (GridPoint, Option<GridPoint>),
     region: &mut Region<'_>,
     t: &TimeModel,
+    improve: bool,
 ) -> (Tour, f64) {
     let n = nodes.len();
     if n == 0 {
@@ -92,7 +94,7 @@ pub(super) fn order_nodes(
     };
     // 2-opt is O(n²) per round: on large regions (a whole map of tiny
     // cells) the nearest-neighbour order and the exact entry choice stand.
-    let rounds = if n <= TWO_OPT_LIMIT { 50 } else { 0 };
+    let rounds = if n <= TWO_OPT_LIMIT && improve { 50 } else { 0 };
     for _round in 0..rounds {
         let mut better = false;
         for i in 0..n {
@@ -121,7 +123,11 @@ pub(super) fn order_nodes(
             break;
         }
     }
-    let seconds = best_options(nodes, &mut tour, &transits);
+    let seconds = if improve {
+        best_options(nodes, &mut tour, &transits)
+    } else {
+        tour_seconds(&tour, &transits)
+    };
     (tour, seconds)
 }
 
@@ -141,6 +147,23 @@ fn entry_buckets(entries: &[(GridPoint, usize, usize)]) -> Buckets<(usize, usize
         b.insert(p, (i, k));
     }
     b
+}
+
+/// The transit seconds of `tour` as it is (its entries, junction turns and
+/// the way to the end).
+fn tour_seconds(tour: &[(usize, usize)], transits: &Transits) -> f64 {
+    let mut seconds = 0.0;
+    let mut from = 0;
+    let mut prev: Option<(usize, usize)> = None;
+    for &(node, k) in tour {
+        seconds += transits.entering(from, node, k);
+        if let Some((p, q)) = prev {
+            seconds += transits.junction(p, q, node, k);
+        }
+        from = transits.exit(node, k);
+        prev = Some((node, k));
+    }
+    seconds + transits.finishing(from)
 }
 
 /// Chooses every node's option for the fixed order (exact: a shortest path

@@ -6,7 +6,7 @@ use oxcover_grid::traverse::segment_clear;
 use oxcover_grid::{DiscRobot, Point};
 
 use super::angles::BUILD_BUDGET;
-use super::plan_lanes;
+use super::{LaneStages, plan_lanes};
 use crate::problem::PlannerInput;
 use crate::{CoverageProblem, Start};
 
@@ -28,7 +28,7 @@ fn the_path_does_not_depend_on_the_thread_count() {
             .num_threads(threads)
             .build()
             .expect("pool")
-            .install(|| plan_lanes(&problem.input(0), None).expect("plan"))
+            .install(|| plan_lanes(&problem.input(0), None, &LaneStages::ALL).expect("plan"))
     };
     let one = on(1);
     assert!(one.len() > 8, "{one:?}");
@@ -59,8 +59,11 @@ fn a_small_plan_builds_more_angles_and_is_never_slower() {
         );
         let mut large = problem.input(0);
         large.plan_cells = BUILD_BUDGET;
-        let time =
-            |input: &PlannerInput<'_>| input.time.polyline(&plan_lanes(input, None).expect("plan"));
+        let time = |input: &PlannerInput<'_>| {
+            input
+                .time
+                .polyline(&plan_lanes(input, None, &LaneStages::ALL).expect("plan"))
+        };
         let (all, two) = (time(&small), time(&large));
         assert!(all <= two + 1e-9, "{size}: {all} > {two}");
         faster += usize::from(all < two - 1e-6);
@@ -77,7 +80,7 @@ fn an_open_room_is_one_loop_and_long_lanes() {
     let problem =
         CoverageProblem::new(&map, DiscRobot::new(0.0, 1.5).unwrap(), Start::First).unwrap();
     let input = problem.input(0);
-    let pts = plan_lanes(&input, None).unwrap();
+    let pts = plan_lanes(&input, None, &LaneStages::ALL).unwrap();
     let f = problem.frame();
     let covered = oxcover_grid::footprint::covered_cells(f, &pts, 1.5);
     assert!(
@@ -106,7 +109,7 @@ mod exact {
         let (map, _) = parse_ascii(text).expect("valid map");
         let problem =
             CoverageProblem::new(&map, DiscRobot::cell_sized(1.0), Start::First).expect("problem");
-        let pts = plan_lanes(&problem.input(0), None).expect("plan");
+        let pts = plan_lanes(&problem.input(0), None, &LaneStages::ALL).expect("plan");
         // Rounded to a hundredth of a cell.
         pts.iter()
             .map(|p| Point::new((p.x * 100.0).round() / 100.0, (p.y * 100.0).round() / 100.0))
