@@ -159,7 +159,8 @@ pub fn section() -> anyhow::Result<String> {
         .collect::<anyhow::Result<Vec<Row>>>()?;
     let mut md = String::from(
         "## What a room's size and clutter leave\n\n\
-         Synthetic rectangular rooms (free space of the size given inside a wall, 0.05 m per cell), bare or with 10 cm square specks spread evenly at least 0.6 m from the walls and from each other, planned by `lanes` with the two settings' robots. `U-turn ceiling`: the time efficiency of straight lanes of the tool's width along the room's long side with a half turn (π rad) between lanes and nothing else (no loop, no overlap, no link): a model of the pattern, not a bound on every path. Measured by this page's run.\n\n\
+         Synthetic rectangular rooms (free space of the size given inside a wall, 0.05 m per cell), bare or with 10 cm square specks spread evenly at least 0.6 m from the walls and from each other, planned by `lanes` with the two settings' robots. Measured by this page's run.\n\n\
+         `U-turn ceiling`: the time efficiency of straight lanes of the tool's width along the room's long side with a half turn (π rad) between lanes and nothing else (no loop, no overlap, no link): a model of the pattern, not a bound on every path.\n\n\
          | room | specks | robot = tool radius | est. time s | of which turning s | time eff. | U-turn ceiling |\n\
          |---|---:|---:|---:|---:|---:|---:|\n",
     );
@@ -206,7 +207,9 @@ pub fn section() -> anyhow::Result<String> {
         .collect();
     let _ = writeln!(
         md,
-        "\nOn the bare rooms `lanes` reaches {:.0} to {:.0} % of the U-turn ceiling (its loop along the walls, the links between lanes and, in the smaller rooms, the lanes' ends near the corners cost the rest), and the ceiling itself falls with the room: at the ROS maps' 0.3 m lane spacing it is {:.2} for a 3 × 3 m room and {:.2} for an 8 × 6 m one. Clutter costs far more than its area: a speck needs a loop round it (a full turn, 12 s at the contract's turning rate, and about 1.3 m of driving) and cuts the lanes beside it. In the 8 × 6 m room (bare: {:.0} s, {:.0} s of it turning) the plan takes {}. A speck's loop alone, the full turn and the C-space outline of a 10 cm square for this robot, would take {:.0} s; `lanes` runs its lanes past a small island and drives the island's loop from the lane passing nearest, so what it pays beyond that is the way out to the loop and back and the lanes' bends round the speck. The small rooms, pillar arenas and scanner specks of the ROS maps, not the last few hundredths on bare rooms, keep their mean far from 0.65.",
+        "\nOn the bare rooms `lanes` reaches {:.0} to {:.0} % of the U-turn ceiling (its loop along the walls, the links between lanes and, in the smaller rooms, the lanes' ends near the corners cost the rest). The ceiling itself falls with the room: at the ROS maps' 0.3 m lane spacing it is {:.2} for a 3 × 3 m room and {:.2} for an 8 × 6 m one.\n\n\
+         Clutter costs far more than its area: a speck needs a loop round it (a full turn, 12 s at the contract's turning rate, and about 1.3 m of driving) and cuts the lanes beside it. In the 8 × 6 m room (bare: {:.0} s, {:.0} s of it turning) the plan takes {}.\n\n\
+         A speck's loop alone, the full turn and the C-space outline of a 10 cm square for this robot, would take {:.0} s. `lanes` drives an island's loop from the lane passing nearest, so what it pays beyond that is the way out to the loop and back and the lanes' bends round the speck. The small rooms, pillar arenas and scanner specks of the ROS maps, not the last few hundredths on bare rooms, keep their mean far from 0.65.",
         100.0 * lo,
         100.0 * hi,
         small.ceiling,

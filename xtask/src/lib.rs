@@ -6,6 +6,7 @@
 //!   `docs/acceptance.md`.
 //! - [`bench`](mod@bench): run the criterion benchmarks and write their figures, with the
 //!   reference ratios and cells-touched counts, into `docs/benchmarks.md`.
+//! - [`diagram`]: the stages of `lanes` as one picture, `docs/lanes.svg`.
 //! - [`efficiency`]: every complete planner, rooms on and off, on the real
 //!   floor plans, scored by estimated time; `docs/efficiency.md`, with
 //!   [`bare_rooms`]: synthetic rooms, bare and with specks, beside the
@@ -27,6 +28,7 @@
 pub mod acceptance;
 pub mod bare_rooms;
 pub mod bench;
+pub mod diagram;
 pub mod efficiency;
 pub mod fuzz;
 pub mod lane_ceiling;

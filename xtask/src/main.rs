@@ -48,6 +48,8 @@ enum Task {
         #[arg(long)]
         planners: Option<String>,
     },
+    /// Draw the stages of `lanes` as one picture: docs/lanes.svg.
+    Diagram,
     /// Every complete planner, rooms on and off, on the real floor plans,
     /// scored by estimated time; write docs/efficiency.md.
     Efficiency {
@@ -136,6 +138,7 @@ fn main() -> anyhow::Result<()> {
             xtask::acceptance::run(filter.as_deref(), planners.as_deref())
         }
         Task::Reproduce { name } => xtask::reproduce::run(&name),
+        Task::Diagram => xtask::diagram::run(),
         Task::Efficiency { planners, filter } => {
             xtask::efficiency::run(planners.as_deref(), filter.as_deref())
         }

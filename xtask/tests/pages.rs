@@ -85,3 +85,44 @@ fn floorplans_page_is_what_the_command_writes() {
         panic!("{e}");
     }
 }
+
+/// `docs/lanes.svg` is what `cargo xtask diagram` draws, and every box
+/// names a file that exists.
+#[test]
+fn the_lanes_picture_is_what_the_command_draws() {
+    let root = xtask::root();
+    let committed = std::fs::read_to_string(root.join("docs/lanes.svg")).unwrap();
+    assert_eq!(
+        committed,
+        xtask::diagram::lanes_svg(),
+        "run `cargo xtask diagram` and commit docs/lanes.svg"
+    );
+    for f in xtask::diagram::files() {
+        let path = root.join("crates/oxcover-planners/src").join(f);
+        assert!(path.is_file(), "the picture names {f}, which is gone");
+    }
+}
+
+/// `docs/efficiency.md` reads as reference: no paragraph (a line outside
+/// a table) longer than about 600 characters, and no story of how a
+/// figure moved (that belongs in commit messages).
+#[test]
+fn the_efficiency_page_reads_as_reference() {
+    let page = std::fs::read_to_string(xtask::root().join("docs/efficiency.md")).unwrap();
+    for line in page.lines().filter(|l| !l.starts_with('|')) {
+        assert!(
+            line.chars().count() <= 650,
+            "a paragraph of {} characters: {}",
+            line.chars().count(),
+            &line[..line.char_indices().nth(80).map_or(line.len(), |(i, _)| i)]
+        );
+    }
+    for history in [
+        "measured when introduced",
+        "a later session",
+        "not kept",
+        "round,",
+    ] {
+        assert!(!page.contains(history), "history on the page: `{history}`");
+    }
+}

@@ -10,6 +10,10 @@
 //! angle). The walls' own strongest directions, where they differ from the
 //! mean (two wall systems, a hexagonal arena), are the re-hatching angles
 //! besides the mean's ([`super::rehatch`]).
+//!
+//! Measured (`docs/efficiency.md`, stage table, rooms on): the wall
+//! directions alone are 2.4 % (ipa) / 0.5 % (ROS) slower, the model's best
+//! angle alone 2.4 % / 1.6 %.
 
 use std::f64::consts::PI;
 

@@ -9,6 +9,11 @@
 //! built in parallel; one whose path after its first tightening pass is
 //! [`LAST_PASSES_GAIN`] slower than the fastest's stops there. A last pass
 //! visits any coverage cell still uncovered, nearest first.
+//!
+//! Measured (`docs/efficiency.md`, stage table, rooms on): without the
+//! detours 23.5 % (ipa) / 10.7 % (ROS) slower. Without `lanes`' own
+//! tightening the figure hardly moves with rooms on, where the pipeline
+//! tightens the whole path again at the end.
 
 use std::sync::OnceLock;
 

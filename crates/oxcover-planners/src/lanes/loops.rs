@@ -10,6 +10,10 @@
 //! walls only. A loop along a ragged wall turns at every pixel it follows;
 //! the shared tightening ([`crate::detours`]) takes those turns out later,
 //! wherever coverage allows.
+//!
+//! Measured (`docs/efficiency.md`, stage table, rooms on): without the
+//! straightening the mean estimated time is 7.1 % higher on the ipa plans,
+//! 0.8 % on the ROS maps.
 
 use oxcover_grid::traverse::{GridPoint, cell_center, segment_clear, segment_distance};
 use oxcover_grid::{Cell, Grid};

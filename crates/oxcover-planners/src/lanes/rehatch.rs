@@ -10,6 +10,9 @@
 //! finds the pieces so treated enough faster than the chain
 //! ([`rehatch_taken`]) they replace it, and the order places them like any
 //! other chain.
+//!
+//! Measured (`docs/efficiency.md`, stage table, rooms on): without it
+//! 0.9 % (ipa) / 2.2 % (ROS) slower.
 
 use std::f64::consts::PI;
 
