@@ -8,124 +8,65 @@
 
 use std::fmt::Write as _;
 
-/// A box: its file (under the planners crate's `src/`), its title and up
-/// to two lines of what it does.
+/// The picture's boxes, a line each, rows in the order `plan_lanes` runs
+/// them: the row's label, `chain` where its boxes run one after another
+/// (else side by side, in parallel), the file (under the planners crate's
+/// `src/`), the box's title and two lines of what it does. Consecutive
+/// lines with the same label are one row.
+const PICTURE: &str = "\
+input | | problem/input.rs | PlannerInput | a region's plannable, coverable and admissible cells, | coverage grid, start, exit, time model (one room or the map)
+lay out (in parallel) | | lanes/loops.rs | edge loops | Moore tracing, points pushed | to the wall, straightened
+lay out (in parallel) | | lanes/layout.rs | lane mask | C-space a tool radius in; | lines, lanes, chains
+lay out (in parallel) | | lanes/islands.rs | small islands | specks lanes run past, | loops lanes drive
+choose angles | | lanes/angles.rs | angles | every 15° and the walls' directions, each modelled by its | chains' time; the best few go on (every one on a small plan)
+per angle (in parallel) | chain | lanes/rehatch.rs | re-hatching | pieces one angle does | not suit, laid again
+per angle (in parallel) | chain | lanes/islands.rs | splices | island loops driven | from the nearest lane
+per angle (in parallel) | chain | lanes/order.rs | order | nodes.rs, transits.rs: | GTSP in seconds
+best few (in parallel) | chain | lanes/build.rs | drive | loops, chains, transits | by clear routes
+best few (in parallel) | chain | detours/insert.rs | detours | cells just out of reach: | the cheapest bend
+best few (in parallel) | chain | detours/tighten.rs | tightening | waypoints removed or | moved, coverage kept
+output | | problem/input.rs | PlanOutput::Metres | the fastest of the paths built, after a last pass over coverage cells still open; | then the pipeline's boundary pass, rooms and metrics
+";
+
+/// A box: its file, its title and two lines of what it does.
 struct Stage {
     file: &'static str,
     title: &'static str,
     lines: [&'static str; 2],
 }
 
-/// One row of the picture: a label (left margin) and its boxes, side by
-/// side (run in parallel, or one after another left to right as `chain`
-/// says).
+/// One row of the picture: its label, whether its boxes run one after
+/// another, and its boxes.
 struct Row {
     label: &'static str,
     chain: bool,
-    stages: &'static [Stage],
+    stages: Vec<Stage>,
 }
 
-const ROWS: [Row; 6] = [
-    Row {
-        label: "input",
-        chain: false,
-        stages: &[Stage {
-            file: "problem/input.rs",
-            title: "PlannerInput",
-            lines: [
-                "a region's plannable, coverable and admissible cells,",
-                "coverage grid, start, exit, time model (one room or the map)",
-            ],
-        }],
-    },
-    Row {
-        label: "lay out (in parallel)",
-        chain: false,
-        stages: &[
-            Stage {
-                file: "lanes/loops.rs",
-                title: "edge loops",
-                lines: ["Moore tracing, points pushed", "to the wall, straightened"],
-            },
-            Stage {
-                file: "lanes/layout.rs",
-                title: "lane mask",
-                lines: ["C-space a tool radius in;", "lines, lanes, chains"],
-            },
-            Stage {
-                file: "lanes/islands.rs",
-                title: "small islands",
-                lines: ["specks lanes run past,", "loops lanes drive"],
-            },
-        ],
-    },
-    Row {
-        label: "choose angles",
-        chain: false,
-        stages: &[Stage {
-            file: "lanes/angles.rs",
-            title: "angles",
-            lines: [
-                "every 15° and the walls' directions, each modelled by its",
-                "chains' time; the best few go on (every one on a small plan)",
-            ],
-        }],
-    },
-    Row {
-        label: "per angle (in parallel)",
-        chain: true,
-        stages: &[
-            Stage {
-                file: "lanes/rehatch.rs",
-                title: "re-hatching",
-                lines: ["pieces one angle does", "not suit, laid again"],
-            },
-            Stage {
-                file: "lanes/islands.rs",
-                title: "splices",
-                lines: ["island loops driven", "from the nearest lane"],
-            },
-            Stage {
-                file: "lanes/order.rs",
-                title: "order",
-                lines: ["nodes.rs, transits.rs:", "GTSP in seconds"],
-            },
-        ],
-    },
-    Row {
-        label: "best few (in parallel)",
-        chain: true,
-        stages: &[
-            Stage {
-                file: "lanes/build.rs",
-                title: "drive",
-                lines: ["loops, chains, transits", "by clear routes"],
-            },
-            Stage {
-                file: "detours/insert.rs",
-                title: "detours",
-                lines: ["cells just out of reach:", "the cheapest bend"],
-            },
-            Stage {
-                file: "detours/tighten.rs",
-                title: "tightening",
-                lines: ["waypoints removed or", "moved, coverage kept"],
-            },
-        ],
-    },
-    Row {
-        label: "output",
-        chain: false,
-        stages: &[Stage {
-            file: "problem/input.rs",
-            title: "PlanOutput::Metres",
-            lines: [
-                "the fastest of the paths built, after a last pass over coverage cells still open;",
-                "then the pipeline's boundary pass, rooms and metrics",
-            ],
-        }],
-    },
-];
+/// The rows of [`PICTURE`].
+fn rows() -> Vec<Row> {
+    let mut rows: Vec<Row> = Vec::new();
+    for line in PICTURE.lines() {
+        let f: Vec<&'static str> = line.split('|').map(str::trim).collect();
+        let [label, mode, file, title, a, b] = f[..] else {
+            continue;
+        };
+        let stage = Stage {
+            file,
+            title,
+            lines: [a, b],
+        };
+        match rows.last_mut() {
+            Some(row) if row.label == label => row.stages.push(stage),
+            _ => rows.push(Row {
+                label,
+                chain: mode == "chain",
+                stages: vec![stage],
+            }),
+        }
+    }
+    rows
+}
 
 /// Width and height of the picture, and of a box.
 const W: f64 = 980.0;
@@ -137,8 +78,9 @@ const TOP: f64 = 56.0;
 /// The files every box names (under `crates/oxcover-planners/src/`).
 #[must_use]
 pub fn files() -> Vec<&'static str> {
-    ROWS.iter()
-        .flat_map(|r| r.stages.iter().map(|s| s.file))
+    PICTURE
+        .lines()
+        .filter_map(|l| l.split('|').nth(2).map(str::trim))
         .collect()
 }
 
@@ -151,7 +93,8 @@ fn esc(s: &str) -> String {
 /// The picture.
 #[must_use]
 pub fn lanes_svg() -> String {
-    let rows = ROWS.len() as f64;
+    let all = rows();
+    let rows = all.len() as f64;
     let h = TOP + rows * (BOX_H + ROW_GAP) - ROW_GAP + 20.0;
     let mut svg = String::new();
     let _ = writeln!(
@@ -169,7 +112,7 @@ pub fn lanes_svg() -> String {
     let span = W - LEFT - 20.0;
     // Each row's box centres, to draw the arrows between rows.
     let mut prev: Vec<(f64, f64)> = Vec::new();
-    for (i, row) in ROWS.iter().enumerate() {
+    for (i, row) in all.iter().enumerate() {
         let y = TOP + i as f64 * (BOX_H + ROW_GAP);
         let n = row.stages.len() as f64;
         let gap = 24.0;

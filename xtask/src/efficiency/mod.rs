@@ -25,17 +25,70 @@ mod stages;
 
 use std::fmt::Write as _;
 
-use oxcover::pipeline::{PlanRequest, plan, planner, planners, room_units};
+use oxcover::pipeline::{PlanOutcome, PlanRequest, plan, planner, planners, room_units};
 use oxcover::planners::{CoverageProblem, PlannerOptions, Start, TimeModel};
 use oxcover::render::{Scene, render_to_file};
 use oxcover::report::metric_rows;
-use oxcover_grid::{DiscRobot, OccupancyGrid};
+use oxcover_grid::{DiscRobot, Occupancy, OccupancyGrid};
 use rayon::prelude::*;
 
 use self::benchmark::benchmark_line;
 use self::ceilings::{SettingCeilings, ceiling_section};
-use self::runs::Run;
+use self::runs::{TimeSplit, other_models, time_split};
 use crate::lane_ceiling::ceiling;
+
+/// One plan's figures.
+#[derive(Clone, Debug)]
+struct Run {
+    coverage: f64,
+    collisions: usize,
+    length_m: f64,
+    turns_per_10m2: f64,
+    est_time_s: f64,
+    efficiency: f64,
+    plan_ms: f64,
+    boundary_share: f64,
+    /// Area covered and free area of the map (m²).
+    covered_m2: f64,
+    free_m2: f64,
+    room_units: Option<usize>,
+    /// Time efficiency of the same path under other time models than the
+    /// contract's ([`other_models`]).
+    other_models: [f64; 3],
+    /// Where the estimated time goes ([`time_split`]).
+    split: TimeSplit,
+}
+
+impl Run {
+    fn of(out: &PlanOutcome, map: &OccupancyGrid, time: &TimeModel) -> Self {
+        let res = map.resolution();
+        let m = &out.evaluation.metrics;
+        let area = m.covered_cells as f64 * res * res;
+        Self {
+            coverage: m.coverage,
+            collisions: m.collisions,
+            length_m: m.length_m,
+            turns_per_10m2: if area > 0.0 {
+                m.turns as f64 * 10.0 / area
+            } else {
+                0.0
+            },
+            est_time_s: m.est_time_s,
+            efficiency: m.time_efficiency.unwrap_or(0.0),
+            plan_ms: out.plan_ms,
+            boundary_share: if m.length_m > 0.0 {
+                out.boundary_length_m / m.length_m
+            } else {
+                0.0
+            },
+            covered_m2: area,
+            free_m2: map.cells().count(|&o| o == Occupancy::Free) as f64 * res * res,
+            room_units: out.room_units,
+            other_models: other_models(&out.points, m.bound_time_s, time),
+            split: time_split(&out.points, m.bound_time_s, time),
+        }
+    }
+}
 
 /// Result of one planner on one map with rooms on or off.
 enum Outcome {

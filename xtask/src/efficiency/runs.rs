@@ -1,64 +1,10 @@
-//! One plan's figures for the page, and its estimated time split into
-//! the bound, the drive beyond it, turns and bends, and under time models
-//! other than the contract's.
+//! A path's estimated time split into the bound, the drive beyond it,
+//! turns and bends, and its time efficiency under time models other than
+//! the contract's.
 
-use oxcover::pipeline::PlanOutcome;
 use oxcover::planners::TimeModel;
+use oxcover_grid::Point;
 use oxcover_grid::math::wrap_angle;
-use oxcover_grid::{Occupancy, OccupancyGrid, Point};
-
-/// One plan's figures.
-#[derive(Clone, Debug)]
-pub(super) struct Run {
-    pub(super) coverage: f64,
-    pub(super) collisions: usize,
-    pub(super) length_m: f64,
-    pub(super) turns_per_10m2: f64,
-    pub(super) est_time_s: f64,
-    pub(super) efficiency: f64,
-    pub(super) plan_ms: f64,
-    pub(super) boundary_share: f64,
-    /// Area covered and free area of the map (m²).
-    pub(super) covered_m2: f64,
-    pub(super) free_m2: f64,
-    pub(super) room_units: Option<usize>,
-    /// Time efficiency of the same path under other time models than the
-    /// contract's ([`other_models`]).
-    pub(super) other_models: [f64; 3],
-    /// Where the estimated time goes ([`time_split`]).
-    pub(super) split: TimeSplit,
-}
-
-impl Run {
-    pub(super) fn of(out: &PlanOutcome, map: &OccupancyGrid, time: &TimeModel) -> Self {
-        let res = map.resolution();
-        let m = &out.evaluation.metrics;
-        let area = m.covered_cells as f64 * res * res;
-        Self {
-            coverage: m.coverage,
-            collisions: m.collisions,
-            length_m: m.length_m,
-            turns_per_10m2: if area > 0.0 {
-                m.turns as f64 * 10.0 / area
-            } else {
-                0.0
-            },
-            est_time_s: m.est_time_s,
-            efficiency: m.time_efficiency.unwrap_or(0.0),
-            plan_ms: out.plan_ms,
-            boundary_share: if m.length_m > 0.0 {
-                out.boundary_length_m / m.length_m
-            } else {
-                0.0
-            },
-            covered_m2: area,
-            free_m2: map.cells().count(|&o| o == Occupancy::Free) as f64 * res * res,
-            room_units: out.room_units,
-            other_models: other_models(&out.points, m.bound_time_s, time),
-            split: time_split(&out.points, m.bound_time_s, time),
-        }
-    }
-}
 
 /// Heading changes up to this are "gentle" (the contract's turn threshold).
 const GENTLE_RAD: f64 = 30.0 * std::f64::consts::PI / 180.0;
@@ -70,7 +16,7 @@ const GENTLE_RAD: f64 = 30.0 * std::f64::consts::PI / 180.0;
 /// the longer of its drive and the turn before it; sharper turns as the
 /// contract charges them); every turn taken while driving; turning free
 /// (the drive alone), over the path's [`legs`].
-fn other_models(points: &[Point], bound: f64, time: &TimeModel) -> [f64; 3] {
+pub(super) fn other_models(points: &[Point], bound: f64, time: &TimeModel) -> [f64; 3] {
     let (v, w) = (time.linear_speed, time.angular_speed);
     let mut times = [0.0f64; 3];
     for (length, turn) in legs(points) {
@@ -131,7 +77,7 @@ impl TimeSplit {
 /// path's [`legs`]; the contract merges segments shorter than a quarter cell before it counts
 /// turns, this split does not (it splits the rotation, which is summed
 /// over every heading change).
-fn time_split(points: &[Point], bound: f64, time: &TimeModel) -> TimeSplit {
+pub(super) fn time_split(points: &[Point], bound: f64, time: &TimeModel) -> TimeSplit {
     let (v, w) = (time.linear_speed, time.angular_speed);
     let mut split = TimeSplit {
         bound,

@@ -14,62 +14,52 @@ use rayon::prelude::*;
 
 use super::{Outcome, Run, Setting, mean};
 
-/// One switchable stage: its row's name, what it does, and the stages
-/// with it (alone) off.
+/// The switchable stages in the order `plan_lanes` runs them, a line
+/// each: the [`LaneStages`] field, the table's name for it, what it does.
+const STAGES: &str = "\
+straighten_loops | edge loops: straightening | each wall's loop straightened within half a tool radius (¼ to 0.8 of a cell); off, a waypoint in every boundary cell
+inset_lines | lane layout: lines inset | the outermost lines moved in to where their reach meets the loops'; off, spread over the whole lane mask
+every_angle | angles: every 15° | every 15° tried besides the walls' directions; off, the two wall directions only
+build_several | angles: built to the end | the model's best few angles built to the end and compared on the finished path; off, the model's best alone
+rehatch | re-hatching | chain pieces one angle does not suit (a corridor's arm hatched across) hatched again along walls or their own axis
+islands | small islands and splices | lanes run past specks and table legs, and an island's loop is driven from the lane passing nearest; off, every island cuts the lanes and its loop is a node
+improve_order | order: 2-opt and entries | the nearest-neighbour order improved by 2-opt, then every node's entry chosen exactly; off, nearest neighbour alone
+detours | detours | cells passed just out of reach covered by the cheapest bend of a nearby segment; off, left to the last pass and the boundary pass
+tighten | tightening | waypoints removed, moved or slid where that saves time and uncovers nothing; off, the path as driven and detoured
+";
+
+/// A stage of [`STAGES`]: every stage on but the one named by `field`.
 struct Stage {
     name: &'static str,
     does: &'static str,
-    off: fn(&mut LaneStages),
+    stages: LaneStages,
 }
 
-/// The stages in the order `plan_lanes` runs them.
-const STAGES: [Stage; 9] = [
-    Stage {
-        name: "edge loops: straightening",
-        does: "each wall's loop straightened within half a tool radius (¼ to 0.8 of a cell); off, a waypoint in every boundary cell",
-        off: |s| s.straighten_loops = false,
-    },
-    Stage {
-        name: "lane layout: lines inset",
-        does: "the outermost lines moved in to where their reach meets the loops'; off, spread over the whole lane mask",
-        off: |s| s.inset_lines = false,
-    },
-    Stage {
-        name: "angles: every 15°",
-        does: "every 15° tried besides the walls' directions; off, the two wall directions only",
-        off: |s| s.every_angle = false,
-    },
-    Stage {
-        name: "angles: built to the end",
-        does: "the model's best few angles built to the end and compared on the finished path; off, the model's best alone",
-        off: |s| s.build_several = false,
-    },
-    Stage {
-        name: "re-hatching",
-        does: "chain pieces one angle does not suit (a corridor's arm hatched across) hatched again along walls or their own axis",
-        off: |s| s.rehatch = false,
-    },
-    Stage {
-        name: "small islands and splices",
-        does: "lanes run past specks and table legs, and an island's loop is driven from the lane passing nearest; off, every island cuts the lanes and its loop is a node",
-        off: |s| s.islands = false,
-    },
-    Stage {
-        name: "order: 2-opt and entries",
-        does: "the nearest-neighbour order improved by 2-opt, then every node's entry chosen exactly; off, nearest neighbour alone",
-        off: |s| s.improve_order = false,
-    },
-    Stage {
-        name: "detours",
-        does: "cells passed just out of reach covered by the cheapest bend of a nearby segment; off, left to the last pass and the boundary pass",
-        off: |s| s.detours = false,
-    },
-    Stage {
-        name: "tightening",
-        does: "waypoints removed, moved or slid where that saves time and uncovers nothing; off, the path as driven and detoured",
-        off: |s| s.tighten = false,
-    },
-];
+/// The rows of [`STAGES`].
+fn stages() -> Vec<Stage> {
+    STAGES
+        .lines()
+        .filter_map(|line| {
+            let mut parts = line.split(" | ");
+            let (field, name, does) = (parts.next()?, parts.next()?, parts.next()?);
+            let mut stages = LaneStages::ALL;
+            let switch = match field {
+                "straighten_loops" => &mut stages.straighten_loops,
+                "inset_lines" => &mut stages.inset_lines,
+                "every_angle" => &mut stages.every_angle,
+                "build_several" => &mut stages.build_several,
+                "rehatch" => &mut stages.rehatch,
+                "islands" => &mut stages.islands,
+                "improve_order" => &mut stages.improve_order,
+                "detours" => &mut stages.detours,
+                "tighten" => &mut stages.tighten,
+                _ => return None,
+            };
+            *switch = false;
+            Some(Stage { name, does, stages })
+        })
+        .collect()
+}
 
 /// `lanes` with `stages` on `map` (rooms on, the page's start and robot).
 fn run_stages(stages: LaneStages, map: &OccupancyGrid, radius: f64) -> Outcome {
@@ -98,7 +88,8 @@ pub(super) fn section(
     all: &[Vec<Option<Run>>],
     failures: &mut Vec<String>,
 ) -> String {
-    let jobs: Vec<(usize, usize, usize)> = (0..STAGES.len())
+    let all_stages = stages();
+    let jobs: Vec<(usize, usize, usize)> = (0..all_stages.len())
         .flat_map(|k| {
             settings
                 .iter()
@@ -110,9 +101,11 @@ pub(super) fn section(
     let results: Vec<Outcome> = jobs
         .par_iter()
         .map(|&(k, s, m)| {
-            let mut stages = LaneStages::ALL;
-            (STAGES[k].off)(&mut stages);
-            let o = run_stages(stages, &settings[s].maps[m].1, settings[s].radius);
+            let o = run_stages(
+                all_stages[k].stages,
+                &settings[s].maps[m].1,
+                settings[s].radius,
+            );
             bar.inc(1);
             o
         })
@@ -143,7 +136,7 @@ pub(super) fn section(
         let _ = set;
     }
     md += "\n";
-    for (k, stage) in STAGES.iter().enumerate() {
+    for (k, stage) in all_stages.iter().enumerate() {
         let _ = write!(md, "| {} | {} |", stage.name, stage.does);
         for (s, set) in settings.iter().enumerate() {
             let mut on = Vec::new();
@@ -211,3 +204,19 @@ Tightening then removes or moves every waypoint that coverage allows: this, not 
 With rooms on the pipeline tightens the whole path once more at the end, so turning off `lanes`' own tightening changes little in the table.\n\n\
 **Room by room.** The pipeline plans each room unit on its own and finishes it before the robot leaves, then tightens the whole path. \
 Where units are long and narrow (rows of offices on one aisle) a room's both wall runs are driven and its doorway is passed twice, so rooms on costs a little on those maps (the lists under the tables).\n\n";
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every line of the table turns exactly one stage off, each another.
+    #[test]
+    fn every_row_turns_one_stage_off() {
+        let rows = stages();
+        assert_eq!(rows.len(), STAGES.lines().count());
+        for (i, a) in rows.iter().enumerate() {
+            assert_eq!(format!("{:?}", a.stages).matches("false").count(), 1);
+            assert!(rows[i + 1..].iter().all(|b| b.stages != a.stages));
+        }
+    }
+}

@@ -15,7 +15,8 @@ use oxcover_grid::traverse::{GridPoint, segment_distance};
 use oxcover_grid::{Point, Vector};
 use oxcover_robot::QuinticBezier;
 
-use super::run::{Run, turn};
+use super::Run;
+use super::run::turn;
 
 /// Largest turn (rad) the time law drives through without stopping; sharper
 /// vertices are rounded when a fillet is faster.

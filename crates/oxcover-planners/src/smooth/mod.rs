@@ -48,10 +48,12 @@ mod slivers;
 #[cfg(test)]
 mod tests;
 
-use oxcover_grid::Point;
+use oxcover_grid::traverse::GridPoint;
+use oxcover_grid::{Cell, Grid, Point};
+use oxcover_robot::Limits;
 
-use self::run::Run;
 use crate::error::{Error, Result};
+use crate::metre_path::{Clearance, PathBuilder};
 use crate::planner::Planner;
 use crate::problem::{PlanOutput, PlannerInput};
 use crate::pso::Pso;
@@ -186,4 +188,53 @@ impl Planner for Smooth {
     fn plan(&self, input: &PlannerInput<'_>) -> Result<PlanOutput> {
         Ok(PlanOutput::Metres(self.plan_detailed(input)?.points))
     }
+}
+
+/// A ring (closed) or a sliver's spine (open) to drive.
+#[derive(Clone, Debug)]
+struct Item {
+    points: Vec<GridPoint>,
+    closed: bool,
+    /// Ring level (0 = wall following); `usize::MAX` for spines.
+    level: usize,
+    /// Coverage cells' representatives in a sliver: it is driven, however
+    /// slow, while one of them is still to visit (completeness).
+    reps: Vec<Cell>,
+}
+
+#[derive(Clone, Copy, Debug, Default)]
+struct Stats {
+    rings: (usize, usize),
+    slivers: (usize, usize),
+    fillets: (usize, usize),
+    fillet_time: (f64, f64),
+}
+
+/// The planner's state.
+struct Run<'a> {
+    plannable: &'a Grid<bool>,
+    clear: Clearance<'a>,
+    builder: PathBuilder<'a>,
+    /// Cells whose centre a path sample passed within the tool radius (the
+    /// contract's coverage).
+    touched: Grid<bool>,
+    /// Coverage cells' representatives, and the cells the path passed
+    /// within the visit radius of.
+    rep: Grid<bool>,
+    visited: Grid<bool>,
+    visit: f64,
+    marked: usize,
+    tool: f64,
+    reach: f64,
+    /// Tool radius less the reach.
+    margin: f64,
+    limits: Limits,
+    resolution: f64,
+    /// Bucket size (cells) of the nearest-item index.
+    bucket: usize,
+    smooth: Smooth,
+    seed: u64,
+    corners: u64,
+    pieces: Vec<Piece>,
+    stats: Stats,
 }

@@ -12,7 +12,7 @@ use oxcover_grid::math::norm;
 use oxcover_grid::traverse::GridPoint;
 
 use super::Behaviour;
-use super::run::{Item, Run};
+use super::{Item, Run};
 use crate::buckets::Buckets;
 use crate::error::Result;
 

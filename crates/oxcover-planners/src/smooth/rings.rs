@@ -21,7 +21,8 @@ use oxcover_grid::traverse::{GridPoint, segment_distance};
 use oxcover_grid::{Cell, Grid};
 
 use super::STAIR_LIFT;
-use super::run::{Item, Run, SAMPLE_SLACK, mark_stroke, turn};
+use super::run::{SAMPLE_SLACK, mark_stroke, turn};
+use super::{Item, Run};
 
 /// How far (cells) under `½ + k·2R` the rings' levels lie.
 const LEVEL_EPSILON: f64 = 1e-3;

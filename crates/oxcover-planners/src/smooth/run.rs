@@ -7,58 +7,9 @@ use oxcover_grid::traverse::{GridPoint, cell_center, segment_distance};
 use oxcover_grid::{Cell, Grid, Point};
 use oxcover_robot::{Limits, Timing};
 
-use super::{Behaviour, CLEARANCE, Piece, Smooth};
+use super::{Behaviour, CLEARANCE, Piece, Run, Smooth, Stats};
 use crate::metre_path::{Clearance, PathBuilder};
 use crate::problem::PlannerInput;
-
-/// A ring (closed) or a sliver's spine (open) to drive.
-#[derive(Clone, Debug)]
-pub(super) struct Item {
-    pub(super) points: Vec<GridPoint>,
-    pub(super) closed: bool,
-    /// Ring level (0 = wall following); `usize::MAX` for spines.
-    pub(super) level: usize,
-    /// Coverage cells' representatives in a sliver: it is driven, however
-    /// slow, while one of them is still to visit (completeness).
-    pub(super) reps: Vec<Cell>,
-}
-
-#[derive(Clone, Copy, Debug, Default)]
-pub(super) struct Stats {
-    pub(super) rings: (usize, usize),
-    pub(super) slivers: (usize, usize),
-    pub(super) fillets: (usize, usize),
-    pub(super) fillet_time: (f64, f64),
-}
-
-/// The planner's state.
-pub(super) struct Run<'a> {
-    pub(super) plannable: &'a Grid<bool>,
-    pub(super) clear: Clearance<'a>,
-    pub(super) builder: PathBuilder<'a>,
-    /// Cells whose centre a path sample passed within the tool radius (the
-    /// contract's coverage).
-    pub(super) touched: Grid<bool>,
-    /// Coverage cells' representatives, and the cells the path passed
-    /// within the visit radius of.
-    pub(super) rep: Grid<bool>,
-    pub(super) visited: Grid<bool>,
-    pub(super) visit: f64,
-    pub(super) marked: usize,
-    pub(super) tool: f64,
-    pub(super) reach: f64,
-    /// Tool radius less the reach.
-    pub(super) margin: f64,
-    pub(super) limits: Limits,
-    pub(super) resolution: f64,
-    /// Bucket size (cells) of the nearest-item index.
-    pub(super) bucket: usize,
-    pub(super) smooth: Smooth,
-    pub(super) seed: u64,
-    pub(super) corners: u64,
-    pub(super) pieces: Vec<Piece>,
-    pub(super) stats: Stats,
-}
 
 impl<'a> Run<'a> {
     pub(super) fn new(input: &PlannerInput<'a>, start: Cell, smooth: Smooth) -> Self {

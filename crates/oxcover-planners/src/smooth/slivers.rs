@@ -18,7 +18,8 @@ use oxcover_grid::Cell;
 use oxcover_grid::math::norm;
 use oxcover_grid::traverse::{GridPoint, cell_center, cell_of, segment_distance};
 
-use super::run::{Run, path_length};
+use super::Run;
+use super::run::path_length;
 
 impl<'a> Run<'a> {
     /// A polyline through `cells` passing within the reach of each: the

@@ -4,9 +4,9 @@
 use oxcover_grid::Grid;
 use oxcover_grid::traverse::GridPoint;
 
+use super::Item;
 use super::order::ItemIndex;
 use super::rings::{resample_loop, simplify_loop, smooth_loop};
-use super::run::Item;
 use super::*;
 use oxcover_grid::traverse::segment_clear;
 
