@@ -21,6 +21,8 @@
 //!   `lee2011`),
 //!   each writing `docs/reproduction/<name>.md` with a table, an SVG figure
 //!   and the command.
+//! - [`segmentation`]: every room segmentation scored on the ipa room
+//!   benchmark against its ground truth; `docs/segmentation.md`.
 //! - [`sweep`]: any planner set over seeded random maps, one JSON line per map,
 //!   deterministic shards for job arrays, and the merge of shards.
 //! - [`plot`]: the small SVG line charts of the reproduction pages.
@@ -36,6 +38,7 @@ pub mod maps;
 pub mod memory_map;
 pub mod plot;
 pub mod reproduce;
+pub mod segmentation;
 pub mod sweep;
 
 use std::path::{Path, PathBuf};

@@ -48,6 +48,16 @@ enum Task {
         #[arg(long)]
         planners: Option<String>,
     },
+    /// Score every room segmentation on the ipa room benchmark
+    /// (../shared/maps/ipa-rooms); write docs/segmentation.md.
+    Segmentation {
+        /// Only plans whose name contains this text (prints the tables).
+        #[arg(long)]
+        filter: Option<String>,
+        /// Also write every plan's picture (the default method) here.
+        #[arg(long)]
+        pictures: Option<PathBuf>,
+    },
     /// Draw the stages of `lanes` as one picture: docs/lanes.svg.
     Diagram,
     /// Every complete planner, rooms on and off, on the real floor plans,
@@ -139,6 +149,9 @@ fn main() -> anyhow::Result<()> {
         }
         Task::Reproduce { name } => xtask::reproduce::run(&name),
         Task::Diagram => xtask::diagram::run(),
+        Task::Segmentation { filter, pictures } => {
+            xtask::segmentation::run(filter.as_deref(), pictures.as_deref())
+        }
         Task::Efficiency { planners, filter } => {
             xtask::efficiency::run(planners.as_deref(), filter.as_deref())
         }

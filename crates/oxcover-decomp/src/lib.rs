@@ -33,6 +33,7 @@
 
 pub mod border_expansion;
 pub mod boustrophedon;
+pub mod doorways;
 pub mod quadtree;
 pub mod rectangular;
 pub mod rooms;
@@ -42,6 +43,7 @@ pub mod voronoi_rooms;
 
 pub use border_expansion::{BorderExpansion, Road, border_expansion};
 pub use boustrophedon::boustrophedon;
+pub use doorways::doorways;
 pub use quadtree::{Block, BlockChanges, QuadTree};
 pub use rectangular::{Rectangle, RectangularDecomposition, dir8_bit};
 pub use rooms::{Door, RoomParams, Rooms, merge_small_regions, morphological};

@@ -87,26 +87,7 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
         1.0
     };
     let at = |c: Cell, d: (isize, isize)| free.offset(c, d).filter(|&n| free[n]);
-    // The clearance of the free cells, 0 on the others and on a frame one
-    // cell wide round the map: read by index, as this looks at every cell.
-    let pw = w + 2;
-    let mut framed = vec![0u64; pw * (h + 2)];
-    for c in free.true_cells() {
-        framed[(c.row + 1) * pw + c.col + 1] = d4[c];
-    }
-    let steps = LINES.map(|(dr, dc)| dr * pw as isize + dc);
-    let axis = Grid::par_from_fn(w, h, |c| {
-        let i = (c.row + 1) * pw + c.col + 1;
-        let v = framed[i];
-        free[c]
-            && steps.iter().any(|&s| {
-                let a = framed[i.wrapping_add_signed(s)];
-                let b = framed[i.wrapping_add_signed(-s)];
-                // Not lower than either side and higher than one: a
-                // crest across the line (a slope along a wall is no crest).
-                v >= a && v >= b && (v > a || v > b)
-            })
-    });
+    let axis = medial_axis(free, &d4);
     // Candidates: narrowest axis cells within their neighbourhood.
     let mut candidates: Vec<(u64, Cell)> = Vec::new();
     for c in axis.true_cells() {
@@ -239,6 +220,35 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
         areas,
         doors,
     }
+}
+
+/// The medial axis of the free cells of `free` (a grid stand-in for the
+/// generalised Voronoi diagram): the free cells whose clearance (`d4`,
+/// 4·clearance², [`boundary_distance_sq4`]) is a crest along at least one
+/// of the four line directions through them (not lower than either
+/// neighbour on the line, higher than one).
+pub(crate) fn medial_axis(free: &Grid<bool>, d4: &Grid<u64>) -> Grid<bool> {
+    let (w, h) = (free.width(), free.height());
+    // The clearance of the free cells, 0 on the others and on a frame one
+    // cell wide round the map: read by index, as this looks at every cell.
+    let pw = w + 2;
+    let mut framed = vec![0u64; pw * (h + 2)];
+    for c in free.true_cells() {
+        framed[(c.row + 1) * pw + c.col + 1] = d4[c];
+    }
+    let steps = LINES.map(|(dr, dc)| dr * pw as isize + dc);
+    Grid::par_from_fn(w, h, |c| {
+        let i = (c.row + 1) * pw + c.col + 1;
+        let v = framed[i];
+        free[c]
+            && steps.iter().any(|&s| {
+                let a = framed[i.wrapping_add_signed(s)];
+                let b = framed[i.wrapping_add_signed(-s)];
+                // Not lower than either side and higher than one: a
+                // crest across the line (a slope along a wall is no crest).
+                v >= a && v >= b && (v > a || v > b)
+            })
+    })
 }
 
 /// Where the axis at `c` opens into a wider space on either side, if it

@@ -127,4 +127,3 @@ pub(super) fn section(runs: &DefaultRobot) -> String {
         verdict(&runs.cli_rooms_off)
     )
 }
-

@@ -1,0 +1,382 @@
+//! Room segmentation by doorways: a room ends where its wall has a gap.
+//!
+//! 1. The clearance of every free cell and the medial axis of the free
+//!    space, as in [`crate::voronoi_rooms`].
+//! 2. **Critical lines**: at every axis cell no wider than half a door, the
+//!    segment between its two nearest obstacle points on opposite sides
+//!    (the survey's critical line through a critical point).
+//! 3. **Doorways**: a critical line is a doorway cut where at least one of
+//!    its ends is a wall end in line with it: beyond that end the obstacle
+//!    runs on along the line for [`JAMB_RUN_M`], as a thin wall (free
+//!    space beside it within [`WALL_HALF_M`]). A gap between two wall ends
+//!    (a door in a wall), or between a wall end and the face of another wall
+//!    (a door in a wall junction), is cut whatever the clearance of the
+//!    spaces it joins: a door wider than the corridor it opens into is
+//!    still a door. The sides of a corridor or a room cross the line at a
+//!    right angle, or end in the outside: no cut.
+//! 4. **Rooms**: the free space minus the cuts falls into regions. Two
+//!    regions a cut joins stay one room where the cut is not narrow beside
+//!    the wider of the two spaces (its half width above [`NARROW`] of that
+//!    space's clearance): the entrance of a side corridor, a wide opening
+//!    into a hall. Regions below the smallest room join the neighbour they
+//!    share the longest border with; the cuts go back to the rooms beside
+//!    them (breadth first).
+//!
+//! Labels are numbered top-left first: rooms of at least the smallest area
+//! in row-major order of their first cell, then the smaller free regions.
+//!
+//! Written for this workspace after the critical lines of Bormann et al.
+//! 2016 ("Room segmentation: survey, implementation, and analysis"), with
+//! this departure: a critical line is a door by the walls at its ends, not
+//! by the clearance along the axis (a local minimum there misses doors
+//! wider than the corridor they open into) and no merging heuristic on
+//! room shape follows.
+
+use std::collections::{BTreeMap, VecDeque};
+
+use oxcover_grid::edt::boundary_distance_sq4;
+use oxcover_grid::traverse::traverse;
+use oxcover_grid::{Cell, Dir4, Grid, components4};
+
+use crate::rooms::{RoomParams, Rooms, doors, grow, label_the_rest, merge_small_regions};
+use crate::voronoi_rooms::medial_axis;
+
+/// How far (m) the wall must run on in line beyond a doorway's end.
+const JAMB_RUN_M: f64 = 0.4;
+
+/// Half the thickness (m) of the thickest wall taken for a jamb.
+const WALL_HALF_M: f64 = 0.5;
+
+/// Largest share of the wider space's clearance a cut's half width may
+/// have to keep two regions apart.
+const NARROW: f64 = 0.7;
+
+/// Least angle between a critical line's two ends seen from its axis
+/// cell: the two nearest obstacle points lie on opposite sides.
+const OPPOSITE_COS: f64 = -0.8;
+
+/// A point in grid coordinates (x = column, y = row).
+type Pt = (f64, f64);
+
+/// A doorway cut: its ends and its half width (cells).
+#[derive(Clone, Copy, Debug)]
+struct Cut {
+    a: Pt,
+    b: Pt,
+    half: f64,
+}
+
+/// Segments the free cells of `free` into rooms at their doorways (see the
+/// module docs).
+#[must_use]
+pub fn doorways(free: &Grid<bool>, params: &RoomParams) -> Rooms {
+    let (w, h) = (free.width(), free.height());
+    let res = params.resolution;
+    let valid = res.is_finite() && res > 0.0;
+    let per_metre = if valid { 1.0 / res } else { 0.0 };
+    let door_half = params.door_width_m / 2.0 * per_metre;
+    let min_cells = (params.min_area_m2 * per_metre * per_metre).max(1.0);
+    let (run, wall_half) = (
+        (JAMB_RUN_M * per_metre).max(1.0),
+        (WALL_HALF_M * per_metre).max(1.0),
+    );
+    let blocked = free.map(|&f| !f);
+    let d4 = boundary_distance_sq4(&blocked, true);
+    let axis = medial_axis(free, &d4);
+    let clearance = |c: Cell| (d4[c] as f64).sqrt() / 2.0;
+    // Critical lines of the narrow axis cells, kept where a wall ends in line.
+    let cuts: Vec<Cut> = axis
+        .true_cells()
+        .filter(|&c| (0.5..=door_half).contains(&clearance(c)))
+        .filter_map(|c| critical_line(free, c, clearance(c)))
+        .filter(|cut| {
+            jamb(free, cut.b, cut.a, run, wall_half) || jamb(free, cut.a, cut.b, run, wall_half)
+        })
+        .collect();
+    let cut_cells: Vec<Vec<Cell>> = cuts.iter().map(|cut| cut_cells_of(free, cut)).collect();
+    let mut on_cut = Grid::new(w, h, false);
+    for &c in cut_cells.iter().flatten() {
+        on_cut[c] = true;
+    }
+    let open = Grid::from_fn(w, h, |c| free[c] && !on_cut[c]);
+    let regions = components4(&open);
+    let mut labels = regions.labels;
+    let count = regions.sizes.len();
+    // Each region's widest clearance.
+    let mut peak = vec![0.0f64; count + 1];
+    for c in open.true_cells() {
+        let l = labels[c] as usize;
+        peak[l] = peak[l].max(clearance(c));
+    }
+    // The regions each cut joins, and the widest cut between each pair.
+    let mut pairs: BTreeMap<(u32, u32), f64> = BTreeMap::new();
+    for (cut, cells) in cuts.iter().zip(&cut_cells) {
+        let mut beside: Vec<u32> = Vec::new();
+        for &c in cells {
+            for d in Dir4::ALL {
+                if let Some(n) = free.step(c, d) {
+                    let l = labels[n];
+                    if l != 0 && !beside.contains(&l) {
+                        beside.push(l);
+                    }
+                }
+            }
+        }
+        beside.sort_unstable();
+        for (i, &x) in beside.iter().enumerate() {
+            for &y in &beside[i + 1..] {
+                let e = pairs.entry((x, y)).or_insert(0.0);
+                *e = e.max(cut.half);
+            }
+        }
+    }
+    // Keep apart only what a narrow cut joins (beside the wider space):
+    // the widest cuts first, each pair judged on the rooms as merged so far.
+    let mut parent: Vec<u32> = (0..=count as u32).collect();
+    let find = |p: &mut Vec<u32>, mut u: u32| {
+        while p[u as usize] != u {
+            let g = p[p[u as usize] as usize];
+            p[u as usize] = g;
+            u = g;
+        }
+        u
+    };
+    let mut order: Vec<((u32, u32), f64)> = pairs.into_iter().collect();
+    order.sort_by(|x, y| y.1.total_cmp(&x.1).then(x.0.cmp(&y.0)));
+    for ((x, y), half) in order {
+        let (rx, ry) = (find(&mut parent, x), find(&mut parent, y));
+        if rx == ry {
+            continue;
+        }
+        let wider = peak[rx as usize].max(peak[ry as usize]);
+        if half > NARROW * wider {
+            let (keep, gone) = (rx.min(ry), rx.max(ry));
+            parent[gone as usize] = keep;
+            peak[keep as usize] = wider;
+        }
+    }
+    for l in labels.as_mut_slice() {
+        if *l != 0 {
+            *l = find(&mut parent, *l);
+        }
+    }
+    // The cuts go back to the rooms beside them.
+    let mut queue: VecDeque<Cell> = labels.cells().filter(|&c| labels[c] != 0).collect();
+    grow(free, &mut labels, &mut queue);
+    label_the_rest(free, &mut labels, count as u32 + 1);
+    merge_small_regions(&mut labels, min_cells);
+    join_pockets(&mut labels, min_cells);
+    relabel(labels, min_cells)
+}
+
+/// The critical line through axis cell `c` of clearance `r`: the segment
+/// between its two nearest obstacle points on opposite sides, if it has
+/// two such.
+fn critical_line(free: &Grid<bool>, c: Cell, r: f64) -> Option<Cut> {
+    let centre = (c.col as f64 + 0.5, c.row as f64 + 0.5);
+    let k = r.ceil() as isize + 2;
+    let mut near: Vec<(Pt, f64)> = Vec::new();
+    for dr in -k..=k {
+        for dc in -k..=k {
+            let (row, col) = (c.row as isize + dr, c.col as isize + dc);
+            let inside = row >= 0
+                && col >= 0
+                && (row as usize) < free.height()
+                && (col as usize) < free.width();
+            if inside && free[Cell::new(row as usize, col as usize)] {
+                continue;
+            }
+            // The point of the cell's square nearest the centre.
+            let q = (
+                centre.0.clamp(col as f64, col as f64 + 1.0),
+                centre.1.clamp(row as f64, row as f64 + 1.0),
+            );
+            let d = (q.0 - centre.0).hypot(q.1 - centre.1);
+            if d <= r + 1.5 {
+                near.push((q, d));
+            }
+        }
+    }
+    // The pair farthest apart in angle, nearest first on ties.
+    let mut best: Option<(f64, Pt, Pt)> = None;
+    for (i, &(p, dp)) in near.iter().enumerate() {
+        for &(q, dq) in &near[i + 1..] {
+            let (ux, uy) = (p.0 - centre.0, p.1 - centre.1);
+            let (vx, vy) = (q.0 - centre.0, q.1 - centre.1);
+            let cos = (ux * vx + uy * vy) / (dp * dq).max(1e-9);
+            if cos > OPPOSITE_COS {
+                continue;
+            }
+            if best.is_none_or(|b| cos < b.0 - 1e-9) {
+                best = Some((cos, p, q));
+            }
+        }
+    }
+    let (_, a, b) = best?;
+    Some(Cut { a, b, half: r })
+}
+
+/// Whether beyond `end` (coming from `from`) the obstacle runs on in line
+/// as a thin wall for `run` cells: every point along the line past `end`
+/// is in a non-free cell (or beside one, a cell's tolerance) of a wall at
+/// most `2 · wall_half` cells thick, free space on both its sides.
+fn jamb(free: &Grid<bool>, from: Pt, end: Pt, run: f64, wall_half: f64) -> bool {
+    let (dx, dy) = (end.0 - from.0, end.1 - from.1);
+    let len = dx.hypot(dy);
+    if len < 1e-9 {
+        return false;
+    }
+    let (ux, uy) = (dx / len, dy / len);
+    let (nx, ny) = (-uy, ux);
+    let blocked_at = |x: f64, y: f64| {
+        let (col, row) = (x.floor(), y.floor());
+        col < 0.0
+            || row < 0.0
+            || col as usize >= free.width()
+            || row as usize >= free.height()
+            || !free[Cell::new(row as usize, col as usize)]
+    };
+    let free_at = |x: f64, y: f64| !blocked_at(x, y);
+    let steps = run.ceil().max(1.0) as usize;
+    for k in 0..steps {
+        let t = k as f64 + 0.5;
+        let (x, y) = (end.0 + ux * t, end.1 + uy * t);
+        let on_wall = blocked_at(x, y)
+            || blocked_at(x + nx * 0.7, y + ny * 0.7)
+            || blocked_at(x - nx * 0.7, y - ny * 0.7);
+        if !on_wall {
+            return false;
+        }
+        // A thin wall: free on both sides, at most two half thicknesses
+        // apart.
+        let most = (2.0 * wall_half).ceil().max(1.0) as usize;
+        let reach = |sx: f64, sy: f64| {
+            (0..=most).find(|&j| {
+                let j = j as f64;
+                free_at(x + sx * j, y + sy * j)
+            })
+        };
+        match (reach(nx, ny), reach(-nx, -ny)) {
+            (Some(p), Some(q)) if (p + q) as f64 <= 2.0 * wall_half + 1.0 => {}
+            _ => return false,
+        }
+    }
+    true
+}
+
+/// The free cells a cut crosses, its ends pushed a cell into the walls so
+/// that no diagonal leak is left beside them.
+fn cut_cells_of(free: &Grid<bool>, cut: &Cut) -> Vec<Cell> {
+    let (dx, dy) = (cut.b.0 - cut.a.0, cut.b.1 - cut.a.1);
+    let len = dx.hypot(dy).max(1e-9);
+    let (ux, uy) = (dx / len, dy / len);
+    let a = oxcover_grid::Point::new(cut.a.0 - ux, cut.a.1 - uy);
+    let b = oxcover_grid::Point::new(cut.b.0 + ux, cut.b.1 + uy);
+    let mut cells = Vec::new();
+    traverse(free.width(), free.height(), a, b, |c, _, _| {
+        if let Some(c) = c.filter(|&c| free[c]) {
+            cells.push(c);
+        }
+        true
+    });
+    cells
+}
+
+/// Gives each region smaller than `min_cells` that no free cell joins to
+/// another (a pocket of floor inside a ring of chairs, behind a table)
+/// the label of the nearest larger region, across whatever lies between.
+fn join_pockets(labels: &mut Grid<u32>, min_cells: f64) {
+    let top = labels.as_slice().iter().copied().max().unwrap_or(0) as usize;
+    let mut size = vec![0usize; top + 1];
+    for &l in labels.as_slice() {
+        size[l as usize] += 1;
+    }
+    let small = |l: u32| l != 0 && (size[l as usize] as f64) < min_cells;
+    if !labels.as_slice().iter().any(|&l| small(l)) {
+        return;
+    }
+    // The nearest larger region of every cell, breadth first over all cells.
+    let mut nearest = labels.map(|&l| if l != 0 && !small(l) { l } else { 0 });
+    let mut queue: VecDeque<Cell> = nearest.cells().filter(|&c| nearest[c] != 0).collect();
+    while let Some(c) = queue.pop_front() {
+        for d in Dir4::ALL {
+            if let Some(n) = nearest.step(c, d) {
+                if nearest[n] == 0 {
+                    nearest[n] = nearest[c];
+                    queue.push_back(n);
+                }
+            }
+        }
+    }
+    for c in labels.cells() {
+        if small(labels[c]) && nearest[c] != 0 {
+            labels[c] = nearest[c];
+        }
+    }
+}
+
+/// `labels` renumbered top-left first: rooms of at least `min_cells` in
+/// row-major order of their first cell, then the smaller free regions;
+/// with their areas and doors.
+fn relabel(mut labels: Grid<u32>, min_cells: f64) -> Rooms {
+    let top = labels.as_slice().iter().copied().max().unwrap_or(0) as usize;
+    let mut size = vec![0usize; top + 1];
+    let mut first: Vec<u32> = Vec::new();
+    for &l in labels.as_slice() {
+        if l != 0 {
+            if size[l as usize] == 0 {
+                first.push(l);
+            }
+            size[l as usize] += 1;
+        }
+    }
+    let big = |l: &u32| size[*l as usize] as f64 >= min_cells;
+    let order: Vec<u32> = first
+        .iter()
+        .filter(|l| big(l))
+        .chain(first.iter().filter(|l| !big(l)))
+        .copied()
+        .collect();
+    let seeded = first.iter().filter(|l| big(l)).count();
+    let mut fresh = vec![0u32; top + 1];
+    for (i, &l) in order.iter().enumerate() {
+        fresh[l as usize] = i as u32 + 1;
+    }
+    let mut areas = vec![0usize; order.len()];
+    for l in labels.as_mut_slice() {
+        if *l != 0 {
+            let id = fresh[*l as usize];
+            areas[id as usize - 1] += 1;
+            *l = id;
+        }
+    }
+    let doors = doors(&labels);
+    Rooms {
+        seeded,
+        labels,
+        areas,
+        doors,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two rooms 60 × 40 cells, one above the other, a wall 4 cells thick
+    /// between them with an 18-cell gap.
+    fn two_rooms() -> Grid<bool> {
+        Grid::from_fn(64, 90, |c: Cell| {
+            let inside = (2..62).contains(&c.col) && (2..88).contains(&c.row);
+            let wall = (43..47).contains(&c.row) && !(23..41).contains(&c.col);
+            inside && !wall
+        })
+    }
+
+    #[test]
+    fn a_gap_in_a_thin_wall_is_a_door() {
+        let free = two_rooms();
+        let r = doorways(&free, &RoomParams::indoor(0.05));
+        assert_eq!(r.count(), 2, "{:?}", r.areas);
+    }
+}
