@@ -51,6 +51,16 @@ const WALL_HALF_M: f64 = 0.5;
 /// have to keep two regions apart.
 const NARROW: f64 = 0.7;
 
+/// Longest opening (m) closed by continuing a wall to the wall ahead.
+const EXTENSION_M: f64 = 3.5;
+
+/// How long (m) a wall must run behind its end to be continued, and how
+/// far the wall it meets must run on beside the meeting point.
+const EXT_WALL_M: f64 = 1.0;
+
+/// Smallest room (m²) a wall's continuation alone keeps apart.
+const EXT_MIN_M2: f64 = 4.0;
+
 /// Least angle between a critical line's two ends seen from its axis
 /// cell: the two nearest obstacle points lie on opposite sides.
 const OPPOSITE_COS: f64 = -0.8;
@@ -64,6 +74,8 @@ struct Cut {
     a: Pt,
     b: Pt,
     half: f64,
+    /// Whether it continues a wall across an opening (else a doorway).
+    extension: bool,
 }
 
 /// Segments the free cells of `free` into rooms at their doorways (see the
@@ -93,6 +105,10 @@ pub fn doorways(free: &Grid<bool>, params: &RoomParams) -> Rooms {
             jamb(free, cut.b, cut.a, run, wall_half) || jamb(free, cut.a, cut.b, run, wall_half)
         })
         .collect();
+    let mut cuts = cuts;
+    if std::env::var_os("OXCOVER_NO_EXT").is_none() {
+        cuts.extend(extension_cuts(free, door_half, per_metre, wall_half));
+    }
     let cut_cells: Vec<Vec<Cell>> = cuts.iter().map(|cut| cut_cells_of(free, cut)).collect();
     let mut on_cut = Grid::new(w, h, false);
     for &c in cut_cells.iter().flatten() {
@@ -109,7 +125,7 @@ pub fn doorways(free: &Grid<bool>, params: &RoomParams) -> Rooms {
         peak[l] = peak[l].max(clearance(c));
     }
     // The regions each cut joins, and the widest cut between each pair.
-    let mut pairs: BTreeMap<(u32, u32), f64> = BTreeMap::new();
+    let mut pairs: BTreeMap<(u32, u32), (f64, bool)> = BTreeMap::new();
     for (cut, cells) in cuts.iter().zip(&cut_cells) {
         let mut beside: Vec<u32> = Vec::new();
         for &c in cells {
@@ -125,8 +141,8 @@ pub fn doorways(free: &Grid<bool>, params: &RoomParams) -> Rooms {
         beside.sort_unstable();
         for (i, &x) in beside.iter().enumerate() {
             for &y in &beside[i + 1..] {
-                let e = pairs.entry((x, y)).or_insert(0.0);
-                *e = e.max(cut.half);
+                let e = pairs.entry((x, y)).or_insert((0.0, true));
+                *e = (e.0.max(cut.half), e.1 && cut.extension);
             }
         }
     }
@@ -141,18 +157,26 @@ pub fn doorways(free: &Grid<bool>, params: &RoomParams) -> Rooms {
         }
         u
     };
-    let mut order: Vec<((u32, u32), f64)> = pairs.into_iter().collect();
-    order.sort_by(|x, y| y.1.total_cmp(&x.1).then(x.0.cmp(&y.0)));
-    for ((x, y), half) in order {
+    let mut area = vec![0usize; count + 1];
+    for (i, &n) in regions.sizes.iter().enumerate() {
+        area[i + 1] = n;
+    }
+    let ext_min = EXT_MIN_M2 * per_metre * per_metre;
+    let mut order: Vec<((u32, u32), (f64, bool))> = pairs.into_iter().collect();
+    order.sort_by(|x, y| y.1.0.total_cmp(&x.1.0).then(x.0.cmp(&y.0)));
+    for ((x, y), (half, extension)) in order {
         let (rx, ry) = (find(&mut parent, x), find(&mut parent, y));
         if rx == ry {
             continue;
         }
         let wider = peak[rx as usize].max(peak[ry as usize]);
-        if half > NARROW * wider {
+        let smaller = area[rx as usize].min(area[ry as usize]) as f64;
+        let join = half > NARROW * wider || (extension && smaller < ext_min);
+        if join {
             let (keep, gone) = (rx.min(ry), rx.max(ry));
             parent[gone as usize] = keep;
             peak[keep as usize] = wider;
+            area[keep as usize] += area[gone as usize];
         }
     }
     for l in labels.as_mut_slice() {
@@ -213,7 +237,12 @@ fn critical_line(free: &Grid<bool>, c: Cell, r: f64) -> Option<Cut> {
         }
     }
     let (_, a, b) = best?;
-    Some(Cut { a, b, half: r })
+    Some(Cut {
+        a,
+        b,
+        half: r,
+        extension: false,
+    })
 }
 
 /// Whether beyond `end` (coming from `from`) the obstacle runs on in line
@@ -262,6 +291,71 @@ fn jamb(free: &Grid<bool>, from: Pt, end: Pt, run: f64, wall_half: f64) -> bool 
         }
     }
     true
+}
+
+/// Cuts that continue a wall across an opening wider than a door: from
+/// each cell that ends a thin wall running along a grid axis for
+/// [`EXT_WALL_M`] behind it, straight on over free cells to the first
+/// obstacle, where that lies between a door's width and [`EXTENSION_M`]
+/// ahead and is the face of a wall that runs on beside the meeting point
+/// for [`EXT_WALL_M`] on one side at least.
+fn extension_cuts(free: &Grid<bool>, door_half: f64, per_metre: f64, wall_half: f64) -> Vec<Cut> {
+    let (w, h) = (free.width() as isize, free.height() as isize);
+    let is_free = |x: isize, y: isize| {
+        x >= 0 && y >= 0 && x < w && y < h && free[Cell::new(y as usize, x as usize)]
+    };
+    let behind = (EXT_WALL_M * per_metre).ceil().max(1.0) as isize;
+    let most = (2.0 * wall_half).ceil().max(1.0) as isize;
+    let (shortest, longest) = (
+        (2.0 * door_half).floor() as isize,
+        (EXTENSION_M * per_metre).floor() as isize,
+    );
+    // Free on both sides across a wall at most two half thicknesses thick.
+    let thin = |x: isize, y: isize, (nx, ny): (isize, isize)| {
+        let side = |s: isize| (1..=most).find(|&j| is_free(x + s * nx * j, y + s * ny * j));
+        matches!((side(1), side(-1)), (Some(p), Some(q)) if p + q <= most + 1)
+    };
+    let mut out = Vec::new();
+    for y in 0..h {
+        for x in 0..w {
+            if is_free(x, y) {
+                continue;
+            }
+            for (dx, dy) in [(1, 0), (0, 1), (-1, 0), (0, -1)] {
+                if !is_free(x + dx, y + dy) {
+                    continue;
+                }
+                let n = (-dy, dx);
+                let wall = (0..=behind).all(|k| {
+                    let (bx, by) = (x - dx * k, y - dy * k);
+                    !is_free(bx, by) && thin(bx, by, n)
+                });
+                if !wall {
+                    continue;
+                }
+                let Some(k) = (1..=longest + 1).find(|&k| !is_free(x + dx * k, y + dy * k)) else {
+                    continue;
+                };
+                if k - 1 <= shortest || k > longest {
+                    continue;
+                }
+                // The wall met runs on beside the meeting point.
+                let (hx, hy) = (x + dx * k, y + dy * k);
+                let face =
+                    |s: isize| (0..=behind).all(|j| !is_free(hx + s * n.0 * j, hy + s * n.1 * j));
+                if !(face(1) || face(-1)) {
+                    continue;
+                }
+                out.push(Cut {
+                    a: (x as f64 + 0.5, y as f64 + 0.5),
+                    b: (hx as f64 + 0.5, hy as f64 + 0.5),
+                    half: (k - 1) as f64 / 2.0,
+                    extension: true,
+                });
+            }
+        }
+    }
+    out
 }
 
 /// The free cells a cut crosses, its ends pushed a cell into the walls so
