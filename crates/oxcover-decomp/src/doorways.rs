@@ -42,7 +42,11 @@ use crate::rooms::{RoomParams, Rooms, doors, grow, label_the_rest, merge_small_r
 use crate::voronoi_rooms::medial_axis;
 
 /// How far (m) the wall must run on in line beyond a doorway's end.
-const JAMB_RUN_M: f64 = 0.4;
+const JAMB_RUN_M: f64 = 0.8;
+
+/// Cells of thin wall a jamb needs before it may meet another wall (a door
+/// beside a corner).
+const JUNCTION_CELLS: usize = 3;
 
 /// Half the thickness (m) of the thickest wall taken for a jamb.
 const WALL_HALF_M: f64 = 0.5;
@@ -246,9 +250,10 @@ fn critical_line(free: &Grid<bool>, c: Cell, r: f64) -> Option<Cut> {
 }
 
 /// Whether beyond `end` (coming from `from`) the obstacle runs on in line
-/// as a thin wall for `run` cells: every point along the line past `end`
-/// is in a non-free cell (or beside one, a cell's tolerance) of a wall at
-/// most `2 · wall_half` cells thick, free space on both its sides.
+/// as a thin wall for `run` cells, or for [`JUNCTION_CELLS`] up to another
+/// wall it meets: every point along the line past `end` is in a non-free
+/// cell (or beside one, a cell's tolerance) of a wall at most
+/// `2 · wall_half` cells thick, free space on both its sides.
 fn jamb(free: &Grid<bool>, from: Pt, end: Pt, run: f64, wall_half: f64) -> bool {
     let (dx, dy) = (end.0 - from.0, end.1 - from.1);
     let len = dx.hypot(dy);
@@ -287,7 +292,9 @@ fn jamb(free: &Grid<bool>, from: Pt, end: Pt, run: f64, wall_half: f64) -> bool 
         };
         match (reach(nx, ny), reach(-nx, -ny)) {
             (Some(p), Some(q)) if (p + q) as f64 <= 2.0 * wall_half + 1.0 => {}
-            _ => return false,
+            // The wall meets another (a corner, a junction): a jamb if it
+            // ran thin for a few cells first.
+            _ => return k >= JUNCTION_CELLS,
         }
     }
     true
