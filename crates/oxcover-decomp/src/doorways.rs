@@ -34,6 +34,8 @@
 
 use std::collections::{BTreeMap, VecDeque};
 
+use rayon::prelude::*;
+
 use oxcover_grid::edt::boundary_distance_sq4;
 use oxcover_grid::traverse::traverse;
 use oxcover_grid::{Cell, Dir4, Grid, components4};
@@ -50,6 +52,10 @@ const JUNCTION_CELLS: usize = 3;
 
 /// Half the thickness (m) of the thickest wall taken for a jamb.
 const WALL_HALF_M: f64 = 0.5;
+
+/// Narrowest doorway (m): narrower gaps (between chairs, behind a table)
+/// are no doors.
+const MIN_DOOR_M: f64 = 0.1;
 
 /// Largest share of the wider space's clearance a cut's half width may
 /// have to keep two regions apart.
@@ -100,19 +106,24 @@ pub fn doorways(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     let d4 = boundary_distance_sq4(&blocked, true);
     let axis = medial_axis(free, &d4);
     let clearance = |c: Cell| (d4[c] as f64).sqrt() / 2.0;
+    let rings = rings(door_half);
+    let narrowest_door = (MIN_DOOR_M / 2.0 * per_metre).max(1.5);
     // Critical lines of the narrow axis cells, kept where a wall ends in line.
-    let cuts: Vec<Cut> = axis
+    // (In parallel, in the axis cells' row-major order whatever the thread
+    // count.)
+    let narrow_axis: Vec<Cell> = axis
         .true_cells()
-        .filter(|&c| (0.5..=door_half).contains(&clearance(c)))
-        .filter_map(|c| critical_line(free, c, clearance(c)))
+        .filter(|&c| (narrowest_door..=door_half).contains(&clearance(c)))
+        .collect();
+    let cuts: Vec<Cut> = narrow_axis
+        .par_iter()
+        .filter_map(|&c| critical_line(free, &rings, c, clearance(c)))
         .filter(|cut| {
             jamb(free, cut.b, cut.a, run, wall_half) || jamb(free, cut.a, cut.b, run, wall_half)
         })
         .collect();
     let mut cuts = cuts;
-    if std::env::var_os("OXCOVER_NO_EXT").is_none() {
-        cuts.extend(extension_cuts(free, door_half, per_metre, wall_half));
-    }
+    cuts.extend(extension_cuts(free, door_half, per_metre, wall_half));
     let cut_cells: Vec<Vec<Cell>> = cuts.iter().map(|cut| cut_cells_of(free, cut)).collect();
     let mut on_cut = Grid::new(w, h, false);
     for &c in cut_cells.iter().flatten() {
@@ -189,7 +200,13 @@ pub fn doorways(free: &Grid<bool>, params: &RoomParams) -> Rooms {
         }
     }
     // The cuts go back to the rooms beside them.
-    let mut queue: VecDeque<Cell> = labels.cells().filter(|&c| labels[c] != 0).collect();
+    // (Only labelled cells beside an unlabelled free one can label any.)
+    let mut queue: VecDeque<Cell> = cut_cells
+        .iter()
+        .flatten()
+        .flat_map(|&c| Dir4::ALL.into_iter().filter_map(move |d| free.step(c, d)))
+        .filter(|&n| labels[n] != 0)
+        .collect();
     grow(free, &mut labels, &mut queue);
     label_the_rest(free, &mut labels, count as u32 + 1);
     merge_small_regions(&mut labels, min_cells);
@@ -197,32 +214,50 @@ pub fn doorways(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     relabel(labels, min_cells)
 }
 
+/// For each whole clearance `R` up to `most`, the offsets of the cells
+/// whose square may hold a point at a distance between `R` and `R + 2.5`
+/// from a cell's centre: where [`critical_line`] looks for the nearest
+/// obstacle points of a cell of clearance in `R..R + 1` (nothing is nearer
+/// than the clearance).
+fn rings(most: f64) -> Vec<Vec<(isize, isize)>> {
+    let top = most.max(0.0).ceil() as usize + 1;
+    (0..=top)
+        .map(|big_r| {
+            let (lo, hi) = (big_r as f64 - 0.75, big_r as f64 + 2.5 + 0.75);
+            let k = hi.ceil() as isize;
+            (-k..=k)
+                .flat_map(|dr| (-k..=k).map(move |dc| (dr, dc)))
+                .filter(|&(dr, dc)| {
+                    let d = (dr as f64).hypot(dc as f64);
+                    d >= lo && d <= hi
+                })
+                .collect()
+        })
+        .collect()
+}
+
 /// The critical line through axis cell `c` of clearance `r`: the segment
 /// between its two nearest obstacle points on opposite sides, if it has
 /// two such.
-fn critical_line(free: &Grid<bool>, c: Cell, r: f64) -> Option<Cut> {
+fn critical_line(free: &Grid<bool>, rings: &[Vec<(isize, isize)>], c: Cell, r: f64) -> Option<Cut> {
     let centre = (c.col as f64 + 0.5, c.row as f64 + 0.5);
-    let k = r.ceil() as isize + 2;
+    let ring = rings.get(r.floor() as usize)?;
     let mut near: Vec<(Pt, f64)> = Vec::new();
-    for dr in -k..=k {
-        for dc in -k..=k {
-            let (row, col) = (c.row as isize + dr, c.col as isize + dc);
-            let inside = row >= 0
-                && col >= 0
-                && (row as usize) < free.height()
-                && (col as usize) < free.width();
-            if inside && free[Cell::new(row as usize, col as usize)] {
-                continue;
-            }
-            // The point of the cell's square nearest the centre.
-            let q = (
-                centre.0.clamp(col as f64, col as f64 + 1.0),
-                centre.1.clamp(row as f64, row as f64 + 1.0),
-            );
-            let d = (q.0 - centre.0).hypot(q.1 - centre.1);
-            if d <= r + 1.5 {
-                near.push((q, d));
-            }
+    for &(dr, dc) in ring {
+        let (row, col) = (c.row as isize + dr, c.col as isize + dc);
+        let inside =
+            row >= 0 && col >= 0 && (row as usize) < free.height() && (col as usize) < free.width();
+        if inside && free[Cell::new(row as usize, col as usize)] {
+            continue;
+        }
+        // The point of the cell's square nearest the centre.
+        let q = (
+            centre.0.clamp(col as f64, col as f64 + 1.0),
+            centre.1.clamp(row as f64, row as f64 + 1.0),
+        );
+        let d = (q.0 - centre.0).hypot(q.1 - centre.1);
+        if d <= r + 1.5 {
+            near.push((q, d));
         }
     }
     // The pair farthest apart in angle, nearest first on ties.
@@ -317,52 +352,98 @@ fn extension_cuts(free: &Grid<bool>, door_half: f64, per_metre: f64, wall_half: 
         (2.0 * door_half).floor() as isize,
         (EXTENSION_M * per_metre).floor() as isize,
     );
-    // Free on both sides across a wall at most two half thicknesses thick.
-    let thin = |x: isize, y: isize, (nx, ny): (isize, isize)| {
-        let side = |s: isize| (1..=most).find(|&j| is_free(x + s * nx * j, y + s * ny * j));
-        matches!((side(1), side(-1)), (Some(p), Some(q)) if p + q <= most + 1)
-    };
-    let mut out = Vec::new();
-    for y in 0..h {
-        for x in 0..w {
-            if is_free(x, y) {
-                continue;
-            }
-            for (dx, dy) in [(1, 0), (0, 1), (-1, 0), (0, -1)] {
-                if !is_free(x + dx, y + dy) {
+    // Free on both sides across a wall at most two half thicknesses
+    // thick: each obstacle cell's run along its row and its column, with
+    // free cells at both ends (0 where a run meets the grid's edge).
+    let runs = |along_rows: bool| {
+        let (fw, fh) = (free.width(), free.height());
+        let cells = free.as_slice();
+        let mut run = vec![0u32; fw * fh];
+        let (outer, inner) = if along_rows { (fh, fw) } else { (fw, fh) };
+        let index = |o: usize, i: usize| if along_rows { o * fw + i } else { i * fw + o };
+        for o in 0..outer {
+            let mut i = 0;
+            while i < inner {
+                if cells[index(o, i)] {
+                    i += 1;
                     continue;
                 }
-                let n = (-dy, dx);
-                let wall = (0..=behind).all(|k| {
-                    let (bx, by) = (x - dx * k, y - dy * k);
-                    !is_free(bx, by) && thin(bx, by, n)
-                });
-                if !wall {
-                    continue;
+                let start = i;
+                while i < inner && !cells[index(o, i)] {
+                    i += 1;
                 }
-                let Some(k) = (1..=longest + 1).find(|&k| !is_free(x + dx * k, y + dy * k)) else {
-                    continue;
+                let len = if start == 0 || i == inner {
+                    0
+                } else {
+                    (i - start) as u32
                 };
-                if k - 1 <= shortest || k > longest {
-                    continue;
+                for j in start..i {
+                    run[index(o, j)] = len;
                 }
-                // The wall met runs on beside the meeting point.
-                let (hx, hy) = (x + dx * k, y + dy * k);
-                let face =
-                    |s: isize| (0..=behind).all(|j| !is_free(hx + s * n.0 * j, hy + s * n.1 * j));
-                if !(face(1) || face(-1)) {
-                    continue;
-                }
-                out.push(Cut {
-                    a: (x as f64 + 0.5, y as f64 + 0.5),
-                    b: (hx as f64 + 0.5, hy as f64 + 0.5),
-                    half: (k - 1) as f64 / 2.0,
-                    extension: true,
-                });
             }
         }
-    }
-    out
+        run
+    };
+    let (across_rows, across_cols) = (runs(true), runs(false));
+    let thin = |x: isize, y: isize, (nx, _): (isize, isize)| {
+        let i = y as usize * free.width() + x as usize;
+        // Across a wall along y is along a row, and the other way round.
+        let run = if nx != 0 {
+            across_rows[i]
+        } else {
+            across_cols[i]
+        };
+        run > 0 && run as isize <= most
+    };
+    // Row by row in parallel, the rows' cuts in row order.
+    let rows: Vec<Vec<Cut>> = (0..h)
+        .into_par_iter()
+        .map(|y| {
+            let mut out = Vec::new();
+            for x in 0..w {
+                if is_free(x, y) {
+                    continue;
+                }
+                for (dx, dy) in [(1, 0), (0, 1), (-1, 0), (0, -1)] {
+                    if !is_free(x + dx, y + dy) {
+                        continue;
+                    }
+                    let n = (-dy, dx);
+                    let wall = (0..=behind).all(|k| {
+                        let (bx, by) = (x - dx * k, y - dy * k);
+                        !is_free(bx, by) && thin(bx, by, n)
+                    });
+                    if !wall {
+                        continue;
+                    }
+                    let Some(k) = (1..=longest + 1).find(|&k| !is_free(x + dx * k, y + dy * k))
+                    else {
+                        continue;
+                    };
+                    if k - 1 <= shortest || k > longest {
+                        continue;
+                    }
+                    // The wall met runs on beside the meeting point.
+                    let (hx, hy) = (x + dx * k, y + dy * k);
+                    let face = |s: isize| {
+                        (0..=behind).all(|j| !is_free(hx + s * n.0 * j, hy + s * n.1 * j))
+                    };
+                    if !(face(1) || face(-1)) {
+                        continue;
+                    }
+                    out.push(Cut {
+                        a: (x as f64 + 0.5, y as f64 + 0.5),
+                        b: (hx as f64 + 0.5, hy as f64 + 0.5),
+                        half: (k - 1) as f64 / 2.0,
+                        extension: true,
+                    });
+                }
+            }
+
+            out
+        })
+        .collect();
+    rows.into_iter().flatten().collect()
 }
 
 /// The free cells a cut crosses, its ends pushed a cell into the walls so
@@ -388,30 +469,45 @@ fn cut_cells_of(free: &Grid<bool>, cut: &Cut) -> Vec<Cell> {
 /// the label of the nearest larger region, across whatever lies between.
 fn join_pockets(labels: &mut Grid<u32>, min_cells: f64) {
     let top = labels.as_slice().iter().copied().max().unwrap_or(0) as usize;
+    let mut cells: Vec<Vec<Cell>> = vec![Vec::new(); top + 1];
     let mut size = vec![0usize; top + 1];
-    for &l in labels.as_slice() {
-        size[l as usize] += 1;
+    for c in labels.cells() {
+        let l = labels[c] as usize;
+        size[l] += 1;
     }
     let small = |l: u32| l != 0 && (size[l as usize] as f64) < min_cells;
-    if !labels.as_slice().iter().any(|&l| small(l)) {
-        return;
+    for c in labels.cells() {
+        if small(labels[c]) {
+            cells[labels[c] as usize].push(c);
+        }
     }
-    // The nearest larger region of every cell, breadth first over all cells.
-    let mut nearest = labels.map(|&l| if l != 0 && !small(l) { l } else { 0 });
-    let mut queue: VecDeque<Cell> = nearest.cells().filter(|&c| nearest[c] != 0).collect();
-    while let Some(c) = queue.pop_front() {
-        for d in Dir4::ALL {
-            if let Some(n) = nearest.step(c, d) {
-                if nearest[n] == 0 {
-                    nearest[n] = nearest[c];
-                    queue.push_back(n);
+    for l in 1..=top as u32 {
+        let Some(&start) = cells[l as usize].first() else {
+            continue;
+        };
+        // Breadth first from the pocket, over every cell, to the first
+        // cell of a larger region.
+        let mut seen = std::collections::BTreeSet::from([start]);
+        let mut queue = VecDeque::from([start]);
+        let mut found = None;
+        while let Some(c) = queue.pop_front() {
+            let m = labels[c];
+            if m != 0 && m != l && !small(m) {
+                found = Some(m);
+                break;
+            }
+            for d in Dir4::ALL {
+                if let Some(n) = labels.step(c, d) {
+                    if seen.insert(n) {
+                        queue.push_back(n);
+                    }
                 }
             }
         }
-    }
-    for c in labels.cells() {
-        if small(labels[c]) && nearest[c] != 0 {
-            labels[c] = nearest[c];
+        if let Some(to) = found {
+            for &c in &cells[l as usize] {
+                labels[c] = to;
+            }
         }
     }
 }

@@ -231,13 +231,13 @@ pub fn run(filter: Option<&str>, pictures: Option<&Path>) -> anyhow::Result<()> 
     for (m, per) in methods.iter().zip(&rows) {
         let _ = write!(
             md,
-            "\n## {}\n\n| plan | rooms | plain: segments | recall | precision | IoU | furnished: segments | recall | precision | IoU |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+            "\n## {}\n\n| plan | rooms | plain: segments | recall | precision | IoU | furnished: segments | recall | precision | IoU | ms plain / furnished |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
             m.name
         );
         for (p, (a, b)) in plans.iter().zip(per) {
             let _ = writeln!(
                 md,
-                "| {} | {} | {} | {:.3} | {:.3} | {:.3} | {} | {:.3} | {:.3} | {:.3} |",
+                "| {} | {} | {} | {:.3} | {:.3} | {:.3} | {} | {:.3} | {:.3} | {:.3} | {:.0} / {:.0} |",
                 p.name,
                 a.score.rooms,
                 a.score.segments,
@@ -247,7 +247,9 @@ pub fn run(filter: Option<&str>, pictures: Option<&Path>) -> anyhow::Result<()> 
                 b.score.segments,
                 b.score.recall,
                 b.score.precision,
-                b.score.iou
+                b.score.iou,
+                a.ms,
+                b.ms
             );
         }
     }
