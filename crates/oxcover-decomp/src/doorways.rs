@@ -40,8 +40,8 @@ use oxcover_grid::edt::boundary_distance_sq4;
 use oxcover_grid::traverse::traverse;
 use oxcover_grid::{Cell, Dir4, Grid, components4};
 
-use crate::rooms::{RoomParams, Rooms, doors, grow, label_the_rest, merge_small_regions};
-use crate::voronoi_rooms::medial_axis;
+use crate::rooms::{Door, RoomParams, Rooms, doors, grow, label_the_rest, merge_small_regions};
+use crate::voronoi_rooms::axis_cells_in;
 
 /// How far (m) the wall must run on in line beyond a doorway's end.
 const JAMB_RUN_M: f64 = 0.8;
@@ -92,6 +92,54 @@ struct Cut {
 /// module docs).
 #[must_use]
 pub fn doorways(free: &Grid<bool>, params: &RoomParams) -> Rooms {
+    // Work on the free cells' bounding box and a cell round it: nothing
+    // outside it is free, so nothing there can change a label.
+    let (w, h) = (free.width(), free.height());
+    let (mut r0, mut r1, mut c0, mut c1) = (h, 0, w, 0);
+    for (r, row) in free.as_slice().chunks(w.max(1)).enumerate() {
+        if let (Some(a), Some(b)) = (row.iter().position(|&f| f), row.iter().rposition(|&f| f)) {
+            (r0, r1) = (r0.min(r), r1.max(r + 1));
+            (c0, c1) = (c0.min(a), c1.max(b + 1));
+        }
+    }
+    if r0 >= r1 {
+        return relabel(Grid::new(w, h, 0), 1.0);
+    }
+    let (r0, c0) = (r0.saturating_sub(1), c0.saturating_sub(1));
+    let (r1, c1) = ((r1 + 1).min(h), (c1 + 1).min(w));
+    if (r0, c0, r1, c1) == (0, 0, h, w) {
+        return doorways_in(free, params);
+    }
+    let iw = c1 - c0;
+    let rows = free.as_slice().chunks(w).skip(r0).take(r1 - r0);
+    let inner: Vec<bool> = rows.flat_map(|row| &row[c0..c1]).copied().collect();
+    let Some(inner) = Grid::from_vec(iw, r1 - r0, inner) else {
+        return doorways_in(free, params);
+    };
+    let part = doorways_in(&inner, params);
+    let mut labels = Grid::new(w, h, 0u32);
+    let out = labels.as_mut_slice().chunks_mut(w).skip(r0);
+    for (to, from) in out.zip(part.labels.as_slice().chunks(iw)) {
+        to[c0..c1].copy_from_slice(from);
+    }
+    let shift = |c: Cell| Cell::new(c.row + r0, c.col + c0);
+    Rooms {
+        labels,
+        doors: part
+            .doors
+            .into_iter()
+            .map(|d| Door {
+                rooms: d.rooms,
+                cells: d.cells.into_iter().map(shift).collect(),
+                centre: shift(d.centre),
+            })
+            .collect(),
+        ..part
+    }
+}
+
+/// [`doorways`] on the whole of `free`.
+fn doorways_in(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     let (w, h) = (free.width(), free.height());
     let res = params.resolution;
     let valid = res.is_finite() && res > 0.0;
@@ -104,15 +152,18 @@ pub fn doorways(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     );
     let blocked = free.map(|&f| !f);
     let d4 = boundary_distance_sq4(&blocked, true);
-    let axis = medial_axis(free, &d4);
     let clearance = |c: Cell| (d4[c] as f64).sqrt() / 2.0;
     let rings = rings(door_half);
     let narrowest_door = (MIN_DOOR_M / 2.0 * per_metre).max(1.5);
     // Critical lines of the narrow axis cells, kept where a wall ends in line.
     // (In parallel, in the axis cells' row-major order whatever the thread
     // count.)
-    let narrow_axis: Vec<Cell> = axis
-        .true_cells()
+    let (lo4, hi4) = (
+        (4.0 * narrowest_door * narrowest_door).floor() as u64,
+        (4.0 * door_half * door_half).ceil() as u64,
+    );
+    let narrow_axis: Vec<Cell> = axis_cells_in(free, &d4, lo4..=hi4)
+        .into_iter()
         .filter(|&c| (narrowest_door..=door_half).contains(&clearance(c)))
         .collect();
     let cuts: Vec<Cut> = narrow_axis
@@ -353,55 +404,38 @@ fn extension_cuts(free: &Grid<bool>, door_half: f64, per_metre: f64, wall_half: 
         (EXTENSION_M * per_metre).floor() as isize,
     );
     // Free on both sides across a wall at most two half thicknesses
-    // thick: each obstacle cell's run along its row and its column, with
-    // free cells at both ends (0 where a run meets the grid's edge).
-    let runs = |along_rows: bool| {
-        let (fw, fh) = (free.width(), free.height());
-        let cells = free.as_slice();
-        let mut run = vec![0u32; fw * fh];
-        let (outer, inner) = if along_rows { (fh, fw) } else { (fw, fh) };
-        let index = |o: usize, i: usize| if along_rows { o * fw + i } else { i * fw + o };
-        for o in 0..outer {
-            let mut i = 0;
-            while i < inner {
-                if cells[index(o, i)] {
-                    i += 1;
-                    continue;
+    // thick: the obstacle cells through (x, y) along (nx, ny), with a free
+    // cell at both ends (not where they meet the grid's edge).
+    let thin = |x: isize, y: isize, (nx, ny): (isize, isize)| {
+        let mut run = 1;
+        for s in [1, -1] {
+            let mut k = 1;
+            loop {
+                let (px, py) = (x + s * nx * k, y + s * ny * k);
+                if px < 0 || py < 0 || px >= w || py >= h {
+                    return false;
                 }
-                let start = i;
-                while i < inner && !cells[index(o, i)] {
-                    i += 1;
+                if is_free(px, py) {
+                    break;
                 }
-                let len = if start == 0 || i == inner {
-                    0
-                } else {
-                    (i - start) as u32
-                };
-                for j in start..i {
-                    run[index(o, j)] = len;
+                run += 1;
+                if run > most {
+                    return false;
                 }
+                k += 1;
             }
         }
-        run
+        true
     };
-    let (across_rows, across_cols) = (runs(true), runs(false));
-    let thin = |x: isize, y: isize, (nx, _): (isize, isize)| {
-        let i = y as usize * free.width() + x as usize;
-        // Across a wall along y is along a row, and the other way round.
-        let run = if nx != 0 {
-            across_rows[i]
-        } else {
-            across_cols[i]
-        };
-        run > 0 && run as isize <= most
-    };
+    let cells = free.as_slice();
     // Row by row in parallel, the rows' cuts in row order.
     let rows: Vec<Vec<Cut>> = (0..h)
         .into_par_iter()
         .map(|y| {
             let mut out = Vec::new();
             for x in 0..w {
-                if is_free(x, y) {
+                let i = y as usize * free.width() + x as usize;
+                if cells[i] {
                     continue;
                 }
                 for (dx, dy) in [(1, 0), (0, 1), (-1, 0), (0, -1)] {
@@ -471,14 +505,17 @@ fn join_pockets(labels: &mut Grid<u32>, min_cells: f64) {
     let top = labels.as_slice().iter().copied().max().unwrap_or(0) as usize;
     let mut cells: Vec<Vec<Cell>> = vec![Vec::new(); top + 1];
     let mut size = vec![0usize; top + 1];
-    for c in labels.cells() {
-        let l = labels[c] as usize;
-        size[l] += 1;
+    for &l in labels.as_slice() {
+        size[l as usize] += 1;
     }
     let small = |l: u32| l != 0 && (size[l as usize] as f64) < min_cells;
-    for c in labels.cells() {
-        if small(labels[c]) {
-            cells[labels[c] as usize].push(c);
+    if !(1..=top as u32).any(small) {
+        return;
+    }
+    let w = labels.width();
+    for (i, &l) in labels.as_slice().iter().enumerate() {
+        if small(l) {
+            cells[l as usize].push(Cell::new(i / w, i % w));
         }
     }
     for l in 1..=top as u32 {

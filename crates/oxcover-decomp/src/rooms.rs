@@ -391,17 +391,21 @@ pub fn merge_small_regions(labels: &mut Grid<u32>, min_cells: f64) {
 /// The doors between every pair of touching rooms.
 pub(crate) fn doors(labels: &Grid<u32>) -> Vec<Door> {
     let mut touching: BTreeMap<(u32, u32), Vec<Cell>> = BTreeMap::new();
-    for c in labels.cells() {
-        let a = labels[c];
+    // Each pair of 4-neighbours once: a cell and the cells right of and
+    // below it; both cells of a pair with two labels touch.
+    let (w, s) = (labels.width(), labels.as_slice());
+    for (i, &a) in s.iter().enumerate() {
         if a == 0 {
             continue;
         }
-        for d in Dir4::ALL {
-            if let Some(n) = labels.step(c, d) {
-                let b = labels[n];
-                if b != 0 && b != a {
-                    touching.entry((a.min(b), a.max(b))).or_default().push(c);
-                }
+        let (r, col) = (i / w, i % w);
+        let right = (col + 1 < w).then(|| (s[i + 1], Cell::new(r, col + 1)));
+        let below = s.get(i + w).map(|&b| (b, Cell::new(r + 1, col)));
+        for (b, n) in [right, below].into_iter().flatten() {
+            if b != 0 && b != a {
+                let cells = touching.entry((a.min(b), a.max(b))).or_default();
+                cells.push(Cell::new(r, col));
+                cells.push(n);
             }
         }
     }

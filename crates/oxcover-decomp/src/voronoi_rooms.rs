@@ -45,6 +45,7 @@ use std::collections::VecDeque;
 
 use oxcover_grid::edt::boundary_distance_sq4;
 use oxcover_grid::{Cell, Grid, components4};
+use rayon::prelude::*;
 
 use crate::rooms::{RoomParams, Rooms, doors, grow, label_the_rest, merge_small_regions};
 
@@ -249,6 +250,48 @@ pub(crate) fn medial_axis(free: &Grid<bool>, d4: &Grid<u64>) -> Grid<bool> {
                 v >= a && v >= b && (v > a || v > b)
             })
     })
+}
+
+/// The cells of the medial axis ([`medial_axis`]) whose `4·clearance²`
+/// lies in `range`, row-major: looks at the crest only where the clearance
+/// is in range (the narrow parts of the axis, without the whole grid's).
+pub(crate) fn axis_cells_in(
+    free: &Grid<bool>,
+    d4: &Grid<u64>,
+    range: std::ops::RangeInclusive<u64>,
+) -> Vec<Cell> {
+    let (w, h) = (free.width(), free.height());
+    let at = |r: isize, c: isize| {
+        if r < 0 || c < 0 || r >= h as isize || c >= w as isize {
+            0
+        } else {
+            let n = Cell::new(r as usize, c as usize);
+            if free[n] { d4[n] } else { 0 }
+        }
+    };
+    let rows: Vec<Vec<Cell>> = (0..h)
+        .into_par_iter()
+        .map(|r| {
+            let mut out = Vec::new();
+            for col in 0..w {
+                let c = Cell::new(r, col);
+                let v = d4[c];
+                if !free[c] || !range.contains(&v) {
+                    continue;
+                }
+                let (ri, ci) = (r as isize, col as isize);
+                let crest = LINES.iter().any(|&(dr, dc)| {
+                    let (a, b) = (at(ri + dr, ci + dc), at(ri - dr, ci - dc));
+                    v >= a && v >= b && (v > a || v > b)
+                });
+                if crest {
+                    out.push(c);
+                }
+            }
+            out
+        })
+        .collect();
+    rows.into_iter().flatten().collect()
 }
 
 /// Where the axis at `c` opens into a wider space on either side, if it
