@@ -62,7 +62,7 @@ const MIN_DOOR_M: f64 = 0.1;
 const NARROW: f64 = 0.7;
 
 /// Longest opening (m) closed by continuing a wall to the wall ahead.
-const EXTENSION_M: f64 = 3.5;
+const EXTENSION_M: f64 = 4.5;
 
 /// How long (m) a wall must run behind its end to be continued, and how
 /// far the wall it meets must run on beside the meeting point.
@@ -70,6 +70,12 @@ const EXT_WALL_M: f64 = 1.0;
 
 /// Smallest room (m²) a wall's continuation alone keeps apart.
 const EXT_MIN_M2: f64 = 4.0;
+
+/// Largest piece (m²) of passage between cuts that joins a neighbour.
+const PIECE_M2: f64 = 2.0;
+
+/// Least share of a piece's border that is cut.
+const PIECE_CUT: f64 = 0.4;
 
 /// Least angle between a critical line's two ends seen from its axis
 /// cell: the two nearest obstacle points lie on opposite sides.
@@ -230,7 +236,7 @@ fn doorways_in(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     let ext_min = EXT_MIN_M2 * per_metre * per_metre;
     let mut order: Vec<((u32, u32), (f64, bool))> = pairs.into_iter().collect();
     order.sort_by(|x, y| y.1.0.total_cmp(&x.1.0).then(x.0.cmp(&y.0)));
-    for ((x, y), (half, extension)) in order {
+    for &((x, y), (half, extension)) in &order {
         let (rx, ry) = (find(&mut parent, x), find(&mut parent, y));
         if rx == ry {
             continue;
@@ -244,6 +250,68 @@ fn doorways_in(free: &Grid<bool>, params: &RoomParams) -> Rooms {
             peak[keep as usize] = wider;
             area[keep as usize] += area[gone as usize];
         }
+    }
+    // Pieces of passage between cuts (a doorway cut twice, the corner
+    // between a door and a wall's continuation) join the neighbour across
+    // their widest cut: the smallest pieces first.
+    let piece_min = PIECE_M2 * per_metre * per_metre;
+    // Each region's border cells, and those of them beside a cut.
+    let mut border = vec![(0usize, 0usize); count + 1];
+    for c in open.true_cells() {
+        let (mut edge, mut cut) = (false, false);
+        for d in Dir4::ALL {
+            match free.step(c, d) {
+                Some(n) if on_cut[n] => (edge, cut) = (true, true),
+                Some(n) if free[n] => {}
+                _ => edge = true,
+            }
+        }
+        let b = &mut border[labels[c] as usize];
+        b.0 += usize::from(edge);
+        b.1 += usize::from(cut);
+    }
+    for l in 1..=count as u32 {
+        let r = find(&mut parent, l);
+        if r != l {
+            let (e, c) = border[l as usize];
+            border[r as usize].0 += e;
+            border[r as usize].1 += c;
+        }
+    }
+    let is_piece = |r: u32, area: &[usize], border: &[(usize, usize)]| {
+        let (edge, cut) = border[r as usize];
+        (area[r as usize] as f64) < piece_min && cut as f64 >= PIECE_CUT * edge as f64
+    };
+    let mut roots: Vec<u32> = (1..=count as u32)
+        .filter(|&r| find(&mut parent, r) == r && is_piece(r, &area, &border))
+        .collect();
+    roots.sort_by_key(|&r| (area[r as usize], r));
+    for r in roots {
+        let r = find(&mut parent, r);
+        let mut across: BTreeMap<u32, f64> = BTreeMap::new();
+        for &((x, y), (half, _)) in &order {
+            let (rx, ry) = (find(&mut parent, x), find(&mut parent, y));
+            if rx != ry && (rx == r || ry == r) {
+                let other = if rx == r { ry } else { rx };
+                let e = across.entry(other).or_insert(0.0);
+                *e = e.max(half);
+            }
+        }
+        if across.len() < 2 || !is_piece(r, &area, &border) {
+            continue;
+        }
+        let Some((&to, _)) = across
+            .iter()
+            .max_by(|a, b| a.1.total_cmp(b.1).then(b.0.cmp(a.0)))
+        else {
+            continue;
+        };
+        let (keep, gone) = (r.min(to), r.max(to));
+        parent[gone as usize] = keep;
+        peak[keep as usize] = peak[r as usize].max(peak[to as usize]);
+        area[keep as usize] = area[r as usize] + area[to as usize];
+        let (a, b) = (border[r as usize], border[to as usize]);
+        border[keep as usize] = (a.0 + b.0, a.1 + b.1);
     }
     for l in labels.as_mut_slice() {
         if *l != 0 {
@@ -429,10 +497,10 @@ fn extension_cuts(free: &Grid<bool>, door_half: f64, per_metre: f64, wall_half: 
     };
     let cells = free.as_slice();
     // Row by row in parallel, the rows' cuts in row order.
-    let rows: Vec<Vec<Cut>> = (0..h)
+    let rows: Vec<(Vec<Cut>, Vec<End>)> = (0..h)
         .into_par_iter()
         .map(|y| {
-            let mut out = Vec::new();
+            let (mut out, mut ends) = (Vec::new(), Vec::new());
             for x in 0..w {
                 let i = y as usize * free.width() + x as usize;
                 if cells[i] {
@@ -450,6 +518,7 @@ fn extension_cuts(free: &Grid<bool>, door_half: f64, per_metre: f64, wall_half: 
                     if !wall {
                         continue;
                     }
+                    ends.push(End { x, y, dx, dy });
                     let Some(k) = (1..=longest + 1).find(|&k| !is_free(x + dx * k, y + dy * k))
                     else {
                         continue;
@@ -462,22 +531,158 @@ fn extension_cuts(free: &Grid<bool>, door_half: f64, per_metre: f64, wall_half: 
                     let face = |s: isize| {
                         (0..=behind).all(|j| !is_free(hx + s * n.0 * j, hy + s * n.1 * j))
                     };
-                    if !(face(1) || face(-1)) {
+                    // Or it is a thin wall in line (a gap in a wall).
+                    let in_line = (0..=behind).all(|j| {
+                        let (ax, ay) = (hx + dx * j, hy + dy * j);
+                        !is_free(ax, ay) && thin(ax, ay, n)
+                    });
+                    // Beside a gap, the space on one side at least is
+                    // wider than the gap (a room, not a corridor crossing).
+                    let wide = |side: isize| {
+                        (2..=5).all(|step| {
+                            let off = side * step * behind / 2;
+                            let (mx, my) = (x + dx * k / 2 + n.0 * off, y + dy * k / 2 + n.1 * off);
+                            let run = |t: isize| {
+                                (1..)
+                                    .take_while(|&i| {
+                                        is_free(mx + t * dx * i, my + t * dy * i) && i <= k + behind
+                                    })
+                                    .count() as isize
+                            };
+                            is_free(mx, my) && run(1) + run(-1) + 1 > k - 1 + behind / 2
+                        })
+                    };
+                    let faced = face(1) || face(-1);
+                    if !((faced || in_line) && (wide(1) || wide(-1))) {
                         continue;
                     }
                     out.push(Cut {
                         a: (x as f64 + 0.5, y as f64 + 0.5),
                         b: (hx as f64 + 0.5, hy as f64 + 0.5),
                         half: (k - 1) as f64 / 2.0,
-                        extension: true,
+                        // A wide gap in a wall is judged as a doorway.
+                        extension: faced,
                     });
                 }
             }
-
-            out
+            (out, ends)
         })
         .collect();
-    rows.into_iter().flatten().collect()
+    let mut cuts = Vec::new();
+    let mut ends = Vec::new();
+    for (c, e) in rows {
+        cuts.extend(c);
+        ends.extend(e);
+    }
+    cuts.extend(end_to_end_cuts(
+        &is_free,
+        &tips(ends),
+        (shortest, longest),
+        behind,
+    ));
+    cuts
+}
+
+/// The tip of a thin wall: an obstacle cell that ends it, and the way out
+/// of it along the wall (a grid axis).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+struct End {
+    dx: isize,
+    dy: isize,
+    x: isize,
+    y: isize,
+}
+
+/// The tips of the walls whose end cells are `ends`: each run of end
+/// cells side by side across one wall's end, as the point in the middle
+/// of its face.
+fn tips(mut ends: Vec<End>) -> Vec<Pt> {
+    let key = |e: &End| (e.dx, e.dy, e.x * e.dx + e.y * e.dy, e.y * e.dx - e.x * e.dy);
+    ends.sort_by_key(key);
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < ends.len() {
+        let mut j = i + 1;
+        while j < ends.len() && {
+            let (a, b) = (key(&ends[j - 1]), key(&ends[j]));
+            (a.0, a.1, a.2) == (b.0, b.1, b.2) && b.3 == a.3 + 1
+        } {
+            j += 1;
+        }
+        let e = ends[(i + j - 1) / 2];
+        out.push((
+            e.x as f64 + 0.5 + e.dx as f64 * 0.5,
+            e.y as f64 + 0.5 + e.dy as f64 * 0.5,
+        ));
+        i = j;
+    }
+    out
+}
+
+/// Cuts from each wall's tip to the nearest other tip, where that lies
+/// between a door's width and [`EXTENSION_M`] away over free cells, and
+/// the space on one side at least of the cut is wider than the cut (the
+/// open side of a room, not a corridor's cross-section).
+fn end_to_end_cuts(
+    is_free: &(impl Fn(isize, isize) -> bool + Sync),
+    tips: &[Pt],
+    (shortest, longest): (isize, isize),
+    behind: isize,
+) -> Vec<Cut> {
+    let free_at = |p: Pt| p.0 >= 0.0 && p.1 >= 0.0 && is_free(p.0 as isize, p.1 as isize);
+    let mut pairs = std::collections::BTreeSet::new();
+    for (i, &a) in tips.iter().enumerate() {
+        let nearest = tips
+            .iter()
+            .enumerate()
+            .filter(|&(j, _)| j != i)
+            .map(|(j, &b)| ((b.0 - a.0).hypot(b.1 - a.1), j))
+            .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+        if let Some((d, j)) = nearest {
+            if d > shortest as f64 && d <= longest as f64 {
+                pairs.insert((i.min(j), i.max(j)));
+            }
+        }
+    }
+    let mut out = Vec::new();
+    for (i, j) in pairs {
+        let (a, b) = (tips[i], tips[j]);
+        let len = (b.0 - a.0).hypot(b.1 - a.1);
+        let u = ((b.0 - a.0) / len, (b.1 - a.1) / len);
+        let open = (2..(2.0 * len) as usize - 1).all(|k| {
+            let t = k as f64 / 2.0;
+            free_at((a.0 + u.0 * t, a.1 + u.1 * t))
+        });
+        if !open {
+            continue;
+        }
+        let mid = ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0);
+        let wide = |side: f64| {
+            (2..=5).all(|step| {
+                let off = side * (step * behind) as f64 / 2.0;
+                let p = (mid.0 - u.1 * off, mid.1 + u.0 * off);
+                let run = |t: f64| {
+                    (1..)
+                        .take_while(|&k| {
+                            let k = f64::from(k);
+                            k <= len + behind as f64
+                                && free_at((p.0 + t * u.0 * k, p.1 + t * u.1 * k))
+                        })
+                        .count() as f64
+                };
+                free_at(p) && run(1.0) + run(-1.0) + 1.0 > len + behind as f64 / 2.0
+            })
+        };
+        if wide(1.0) || wide(-1.0) {
+            out.push(Cut {
+                a,
+                b,
+                half: len / 2.0,
+                extension: false,
+            });
+        }
+    }
+    out
 }
 
 /// The free cells a cut crosses, its ends pushed a cell into the walls so
