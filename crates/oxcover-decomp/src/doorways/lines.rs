@@ -1,0 +1,169 @@
+//! Critical lines and the walls at their ends: where a narrow passage
+//! crosses the axis of the free space, and whether a wall ends there in line.
+
+use oxcover_grid::traverse::traverse;
+use oxcover_grid::{Cell, Grid};
+
+use super::{Cut, Pt};
+
+/// How far (m) the wall must run on in line beyond a doorway's end.
+pub(super) const JAMB_RUN_M: f64 = 0.8;
+
+/// Cells of thin wall a jamb needs before it may meet another wall (a door
+/// beside a corner).
+pub(super) const JUNCTION_CELLS: usize = 3;
+
+/// Half the thickness (m) of the thickest wall taken for a jamb.
+pub(super) const WALL_HALF_M: f64 = 0.5;
+
+/// Narrowest doorway (m): narrower gaps (between chairs, behind a table)
+/// are no doors.
+pub(super) const MIN_DOOR_M: f64 = 0.1;
+
+/// Least angle between a critical line's two ends seen from its axis
+/// cell: the two nearest obstacle points lie on opposite sides.
+pub(super) const OPPOSITE_COS: f64 = -0.8;
+
+/// For each whole clearance `R` up to `most`, the offsets of the cells
+/// whose square may hold a point at a distance between `R` and `R + 2.5`
+/// from a cell's centre: where [`critical_line`] looks for the nearest
+/// obstacle points of a cell of clearance in `R..R + 1` (nothing is nearer
+/// than the clearance).
+pub(super) fn rings(most: f64) -> Vec<Vec<(isize, isize)>> {
+    let top = most.max(0.0).ceil() as usize + 1;
+    (0..=top)
+        .map(|big_r| {
+            let (lo, hi) = (big_r as f64 - 0.75, big_r as f64 + 2.5 + 0.75);
+            let k = hi.ceil() as isize;
+            (-k..=k)
+                .flat_map(|dr| (-k..=k).map(move |dc| (dr, dc)))
+                .filter(|&(dr, dc)| {
+                    let d = (dr as f64).hypot(dc as f64);
+                    d >= lo && d <= hi
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The critical line through axis cell `c` of clearance `r`: the segment
+/// between its two nearest obstacle points on opposite sides, if it has
+/// two such.
+pub(super) fn critical_line(
+    free: &Grid<bool>,
+    rings: &[Vec<(isize, isize)>],
+    c: Cell,
+    r: f64,
+) -> Option<Cut> {
+    let centre = (c.col as f64 + 0.5, c.row as f64 + 0.5);
+    let ring = rings.get(r.floor() as usize)?;
+    let mut near: Vec<(Pt, f64)> = Vec::new();
+    for &(dr, dc) in ring {
+        let (row, col) = (c.row as isize + dr, c.col as isize + dc);
+        let inside =
+            row >= 0 && col >= 0 && (row as usize) < free.height() && (col as usize) < free.width();
+        if inside && free[Cell::new(row as usize, col as usize)] {
+            continue;
+        }
+        // The point of the cell's square nearest the centre.
+        let q = (
+            centre.0.clamp(col as f64, col as f64 + 1.0),
+            centre.1.clamp(row as f64, row as f64 + 1.0),
+        );
+        let d = (q.0 - centre.0).hypot(q.1 - centre.1);
+        if d <= r + 1.5 {
+            near.push((q, d));
+        }
+    }
+    // The pair farthest apart in angle, nearest first on ties.
+    let mut best: Option<(f64, Pt, Pt)> = None;
+    for (i, &(p, dp)) in near.iter().enumerate() {
+        for &(q, dq) in &near[i + 1..] {
+            let (ux, uy) = (p.0 - centre.0, p.1 - centre.1);
+            let (vx, vy) = (q.0 - centre.0, q.1 - centre.1);
+            let cos = (ux * vx + uy * vy) / (dp * dq).max(1e-9);
+            if cos > OPPOSITE_COS {
+                continue;
+            }
+            if best.is_none_or(|b| cos < b.0 - 1e-9) {
+                best = Some((cos, p, q));
+            }
+        }
+    }
+    let (_, a, b) = best?;
+    Some(Cut {
+        a,
+        b,
+        half: r,
+        extension: false,
+    })
+}
+
+/// Whether beyond `end` (coming from `from`) the obstacle runs on in line
+/// as a thin wall for `run` cells, or for [`JUNCTION_CELLS`] up to another
+/// wall it meets: every point along the line past `end` is in a non-free
+/// cell (or beside one, a cell's tolerance) of a wall at most
+/// `2 · wall_half` cells thick, free space on both its sides.
+pub(super) fn jamb(free: &Grid<bool>, from: Pt, end: Pt, run: f64, wall_half: f64) -> bool {
+    let (dx, dy) = (end.0 - from.0, end.1 - from.1);
+    let len = dx.hypot(dy);
+    if len < 1e-9 {
+        return false;
+    }
+    let (ux, uy) = (dx / len, dy / len);
+    let (nx, ny) = (-uy, ux);
+    let blocked_at = |x: f64, y: f64| {
+        let (col, row) = (x.floor(), y.floor());
+        col < 0.0
+            || row < 0.0
+            || col as usize >= free.width()
+            || row as usize >= free.height()
+            || !free[Cell::new(row as usize, col as usize)]
+    };
+    let free_at = |x: f64, y: f64| !blocked_at(x, y);
+    let steps = run.ceil().max(1.0) as usize;
+    for k in 0..steps {
+        let t = k as f64 + 0.5;
+        let (x, y) = (end.0 + ux * t, end.1 + uy * t);
+        let on_wall = blocked_at(x, y)
+            || blocked_at(x + nx * 0.7, y + ny * 0.7)
+            || blocked_at(x - nx * 0.7, y - ny * 0.7);
+        if !on_wall {
+            return false;
+        }
+        // A thin wall: free on both sides, at most two half thicknesses
+        // apart.
+        let most = (2.0 * wall_half).ceil().max(1.0) as usize;
+        let reach = |sx: f64, sy: f64| {
+            (0..=most).find(|&j| {
+                let j = j as f64;
+                free_at(x + sx * j, y + sy * j)
+            })
+        };
+        match (reach(nx, ny), reach(-nx, -ny)) {
+            (Some(p), Some(q)) if (p + q) as f64 <= 2.0 * wall_half + 1.0 => {}
+            // The wall meets another (a corner, a junction): a jamb if it
+            // ran thin for a few cells first.
+            _ => return k >= JUNCTION_CELLS,
+        }
+    }
+    true
+}
+
+/// The free cells a cut crosses, its ends pushed a cell into the walls so
+/// that no diagonal leak is left beside them.
+pub(super) fn cut_cells_of(free: &Grid<bool>, cut: &Cut) -> Vec<Cell> {
+    let (dx, dy) = (cut.b.0 - cut.a.0, cut.b.1 - cut.a.1);
+    let len = dx.hypot(dy).max(1e-9);
+    let (ux, uy) = (dx / len, dy / len);
+    let a = oxcover_grid::Point::new(cut.a.0 - ux, cut.a.1 - uy);
+    let b = oxcover_grid::Point::new(cut.b.0 + ux, cut.b.1 + uy);
+    let mut cells = Vec::new();
+    traverse(free.width(), free.height(), a, b, |c, _, _| {
+        if let Some(c) = c.filter(|&c| free[c]) {
+            cells.push(c);
+        }
+        true
+    });
+    cells
+}
