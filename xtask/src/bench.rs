@@ -256,6 +256,37 @@ fn sensor_bcd_section(root: &Path) -> anyhow::Result<()> {
     Ok(())
 }
 
+fn segmentation_section(root: &Path) -> anyhow::Result<()> {
+    let group = root.join("target/criterion/segmentation");
+    let mut md = format!(
+        "Measured by `cargo xtask bench --only segmentation` (which runs `cargo bench -p oxcover-decomp --bench segmentation`) on {}. `doorways` (the default of `oxcover segment`) against `voronoi` (the default before it, the reference of the same run) on the ten plain plans of `../shared/maps/ipa-rooms` (0.05 m per pixel, grey above 250 free), segmentation call only.\n\n| plan | voronoi ms | doorways ms | doorways / voronoi | doorways under 100 ms |\n|---|---:|---:|---:|---|\n",
+        machine()
+    );
+    let mut measured = 0;
+    for plan in crate::segmentation::PLANS {
+        let t = |m: &str| estimate_ns(&group.join(format!("{m}_{plan}"))).map(|(m, _)| m);
+        let (Ok(reference), Ok(ours)) = (t("voronoi"), t("doorways")) else {
+            md += &format!("| {plan} | not measured (plan not found) | | | |\n");
+            continue;
+        };
+        measured += 1;
+        md += &format!(
+            "| {plan} | {:.1} | {:.1} | {:.2} | {} |\n",
+            reference / 1e6,
+            ours / 1e6,
+            ours / reference,
+            under(ours, 1e8)
+        );
+    }
+    anyhow::ensure!(
+        measured > 0,
+        "no segmentation results under {}",
+        group.display()
+    );
+    crate::replace_section(&root.join("docs/benchmarks.md"), "segmentation", &md)?;
+    Ok(())
+}
+
 fn machine() -> String {
     let out = |cmd: &str, args: &[&str]| {
         Command::new(cmd)
@@ -294,6 +325,7 @@ pub fn run(no_run: bool, only: Option<&str>) -> anyhow::Result<()> {
         ("efficiency", "oxcover"),
         ("smooth", "oxcover-planners"),
         ("sensor_bcd", "oxcover"),
+        ("segmentation", "oxcover-decomp"),
         ("grid_cover", "oxcover-planners"),
         ("wavefront", "oxcover-distance"),
     ] {
@@ -317,6 +349,9 @@ pub fn run(no_run: bool, only: Option<&str>) -> anyhow::Result<()> {
     }
     if want("sensor_bcd") {
         sensor_bcd_section(&root)?;
+    }
+    if want("segmentation") {
+        segmentation_section(&root)?;
     }
     if want("grid_cover") {
         grid_cover_section(&root)?;

@@ -12,8 +12,9 @@ use crate::map::{Map, grid_row, rows_of};
 
 /// Segments the free space of `map` into rooms, as `oxcover segment` does.
 ///
-/// `method` is "voronoi" (split at the narrow points of the medial axis:
-/// doors up to `door_width` metres wide; the rooms `plan` goes by) or
+/// `method` is "doorways" (the default: split where a wall has a gap,
+/// doors up to `door_width` metres wide, walls continued across a room's
+/// open side), "voronoi" (split at the narrow points of the medial axis) or
 /// "morphological" (erode until the free space splits into seeds between
 /// `min_area` and `max_area` m², grow them back).
 ///
@@ -23,7 +24,7 @@ use crate::map::{Map, grid_row, rows_of};
 /// grown from seeds), `rooms` (label, area_m2, centroid in metres, seeded)
 /// and `doors` (the two rooms, centre in metres, cells).
 #[pyfunction]
-#[pyo3(signature = (map, *, method = "voronoi", min_area = 1.0, max_area = 47.0, door_width = 1.6, rows = "up"))]
+#[pyo3(signature = (map, *, method = "doorways", min_area = 1.0, max_area = 47.0, door_width = 1.6, rows = "up"))]
 pub(crate) fn segment<'py>(
     py: Python<'py>,
     map: &Map,
@@ -35,9 +36,16 @@ pub(crate) fn segment<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let rows = rows_of(rows)?;
     let method = match method {
+        "doorways" => Method::Doorways,
         "voronoi" => Method::Voronoi,
         "morphological" => Method::Morphological,
-        other => return Err(bad("method", other, "`voronoi` or `morphological`")),
+        other => {
+            return Err(bad(
+                "method",
+                other,
+                "`doorways`, `voronoi` or `morphological`",
+            ));
+        }
     };
     let options = SegmentOptions {
         method,

@@ -2,7 +2,7 @@
 //! [`oxcover_decomp::rooms`] in metres (room areas and centroids, door
 //! centres and widths), as JSON, and drawn with one colour per room.
 
-use oxcover_decomp::{RoomParams, Rooms, morphological, voronoi};
+use oxcover_decomp::{RoomParams, Rooms, doorways, morphological, voronoi};
 use oxcover_grid::OccupancyGrid;
 use serde::Serialize;
 
@@ -36,15 +36,16 @@ pub struct DoorInfo {
 /// The `oxcover segment --out F.json` object.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RoomsReport {
-    /// Method (`morphological` or `voronoi`).
+    /// Method (`doorways`, `voronoi` or `morphological`).
     pub method: String,
     /// Smallest room asked for (m²).
     pub min_area_m2: f64,
     /// Largest room seed asked for (m², morphological).
     pub max_area_m2: f64,
-    /// Widest door asked for (m, voronoi).
+    /// Widest door asked for (m, doorways and voronoi).
     pub door_width_m: f64,
-    /// Rooms grown from seeds (voronoi: every room).
+    /// Rooms grown from seeds (morphological), or rooms of at least the
+    /// smallest area (doorways, voronoi); they come first.
     pub seeded: usize,
     /// Every room, seeded ones first.
     pub rooms: Vec<RoomInfo>,
@@ -55,12 +56,16 @@ pub struct RoomsReport {
 /// A segmentation method.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Method {
+    /// Split where a wall has a gap: doors between wall ends, walls
+    /// continued across a room's open side ([`oxcover_decomp::doorways`]);
+    /// the rooms people name (IoU 0.97 on the ipa benchmark's plans).
+    #[default]
+    Doorways,
     /// Erode until the free space splits into room-sized pieces, grow them
     /// back ([`oxcover_decomp::rooms`]).
     Morphological,
     /// Split at the narrow points of the distance transform's medial axis
-    /// ([`oxcover_decomp::voronoi_rooms`]); the rooms `plan` goes by.
-    #[default]
+    /// ([`oxcover_decomp::voronoi_rooms`]).
     Voronoi,
 }
 
@@ -69,6 +74,7 @@ impl Method {
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
+            Method::Doorways => "doorways",
             Method::Morphological => "morphological",
             Method::Voronoi => "voronoi",
         }
@@ -81,11 +87,11 @@ pub struct SegmentOptions {
     /// The method.
     pub method: Method,
     /// Smallest room (m²): the smallest eroded seed (morphological) or the
-    /// smallest region kept apart (voronoi).
+    /// smallest region kept apart (doorways, voronoi).
     pub min_area_m2: f64,
     /// Largest eroded seed (m², morphological only).
     pub max_area_m2: f64,
-    /// Widest opening taken for a door (m, voronoi only).
+    /// Widest opening taken for a door (m, doorways and voronoi).
     pub door_width_m: f64,
 }
 
@@ -93,7 +99,7 @@ impl Default for SegmentOptions {
     fn default() -> Self {
         let d = RoomParams::indoor(1.0);
         Self {
-            method: Method::Voronoi,
+            method: Method::Doorways,
             min_area_m2: d.min_area_m2,
             max_area_m2: d.max_area_m2,
             door_width_m: d.door_width_m,
@@ -126,6 +132,7 @@ pub fn segment(map: &OccupancyGrid, options: &SegmentOptions) -> Result<Rooms> {
     };
     let free = map.free_mask();
     Ok(match options.method {
+        Method::Doorways => doorways(&free, &params),
         Method::Morphological => morphological(&free, &params),
         Method::Voronoi => voronoi(&free, &params),
     })

@@ -228,6 +228,39 @@ pub fn run(filter: Option<&str>, pictures: Option<&Path>) -> anyhow::Result<()> 
         }
     }
     md += "\nFor comparison, the ipa package's own methods on the same ten plans, plain (measured by issue 47 with the package built and run standalone; not re-run here): Voronoi recall 0.951, precision 0.983, IoU 0.918; morphological 0.986 / 0.932 / 0.810; distance 0.978 / 0.937 / 0.865.\n";
+    // The default method (the first) against the targets of issue 47.
+    md += "\n## Targets (the default method)\n\nMean recall and precision at least 0.95 and at least the peer's (0.951 / 0.983), mean IoU at least 0.93 and the peer's 0.918, no plan below IoU 0.85; plain and furnished.\n\n";
+    for (variant, pick) in [("plain", 0usize), ("furnished", 1)] {
+        let runs: Vec<Run> = rows[0]
+            .iter()
+            .map(|r| if pick == 0 { r.0 } else { r.1 })
+            .collect();
+        let (recall, precision, iou) = (
+            mean(runs.iter().map(|r| r.score.recall)),
+            mean(runs.iter().map(|r| r.score.precision)),
+            mean(runs.iter().map(|r| r.score.iou)),
+        );
+        let low: Vec<String> = plans
+            .iter()
+            .zip(&runs)
+            .filter(|(_, r)| r.score.iou < 0.85)
+            .map(|(p, r)| format!("{} {:.3}", p.name, r.score.iou))
+            .collect();
+        let verdict = |ok: bool| if ok { "met" } else { "**not met**" };
+        let _ = writeln!(
+            md,
+            "- {variant}: recall {recall:.3} {}, precision {precision:.3} {}, IoU {iou:.3} {}; plans below IoU 0.85: {} ({})",
+            verdict(recall >= 0.951),
+            verdict(precision >= 0.983),
+            verdict(iou >= 0.93),
+            if low.is_empty() {
+                "none".to_string()
+            } else {
+                low.join(", ")
+            },
+            verdict(low.is_empty()),
+        );
+    }
     for (m, per) in methods.iter().zip(&rows) {
         let _ = write!(
             md,

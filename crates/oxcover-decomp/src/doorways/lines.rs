@@ -20,9 +20,14 @@ pub(super) const WALL_HALF_M: f64 = 0.5;
 /// are no doors.
 pub(super) const MIN_DOOR_M: f64 = 0.1;
 
+/// Angle between a critical line's two ends seen from its axis cell within
+/// which they count as straight across (about 11°): of such pairs the
+/// shortest is the line, not a slant across a corridor.
+const STRAIGHT_COS: f64 = -0.98;
+
 /// Least angle between a critical line's two ends seen from its axis
 /// cell: the two nearest obstacle points lie on opposite sides.
-pub(super) const OPPOSITE_COS: f64 = -0.8;
+const OPPOSITE_COS: f64 = -0.8;
 
 /// For each whole clearance `R` up to `most`, the offsets of the cells
 /// whose square may hold a point at a distance between `R` and `R + 2.5`
@@ -75,7 +80,9 @@ pub(super) fn critical_line(
             near.push((q, d));
         }
     }
-    // The pair farthest apart in angle, nearest first on ties.
+    // The shortest pair straight across (a corridor's cross-section, not
+    // a slant through it), else the pair farthest apart in angle.
+    let mut straight: Option<(f64, Pt, Pt)> = None;
     let mut best: Option<(f64, Pt, Pt)> = None;
     for (i, &(p, dp)) in near.iter().enumerate() {
         for &(q, dq) in &near[i + 1..] {
@@ -85,11 +92,15 @@ pub(super) fn critical_line(
             if cos > OPPOSITE_COS {
                 continue;
             }
+            if cos <= STRAIGHT_COS && straight.is_none_or(|b| dp + dq < b.0 - 1e-9) {
+                straight = Some((dp + dq, p, q));
+            }
             if best.is_none_or(|b| cos < b.0 - 1e-9) {
                 best = Some((cos, p, q));
             }
         }
     }
+    let best = straight.or(best);
     let (_, a, b) = best?;
     Some(Cut {
         a,
@@ -99,12 +110,29 @@ pub(super) fn critical_line(
     })
 }
 
+/// Largest obstacle (m²) standing alone, not touching the map's edge,
+/// taken for furniture: no jamb, no end of a doorway (a cabinet pointing
+/// at a door is no wall).
+pub(super) const ISLAND_M2: f64 = 2.0;
+
+/// Thinnest furniture (m, both ways): thinner pieces standing alone are
+/// walls broken up in a scan.
+pub(super) const ISLAND_THICK_M: f64 = 0.3;
+
 /// Whether beyond `end` (coming from `from`) the obstacle runs on in line
 /// as a thin wall for `run` cells, or for [`JUNCTION_CELLS`] up to another
 /// wall it meets: every point along the line past `end` is in a non-free
 /// cell (or beside one, a cell's tolerance) of a wall at most
-/// `2 · wall_half` cells thick, free space on both its sides.
-pub(super) fn jamb(free: &Grid<bool>, from: Pt, end: Pt, run: f64, wall_half: f64) -> bool {
+/// `2 · wall_half` cells thick, free space on both its sides, and not
+/// `furniture`.
+pub(super) fn jamb(
+    free: &Grid<bool>,
+    furniture: &Grid<bool>,
+    from: Pt,
+    end: Pt,
+    run: f64,
+    wall_half: f64,
+) -> bool {
     let (dx, dy) = (end.0 - from.0, end.1 - from.1);
     let len = dx.hypot(dy);
     if len < 1e-9 {
@@ -121,6 +149,13 @@ pub(super) fn jamb(free: &Grid<bool>, from: Pt, end: Pt, run: f64, wall_half: f6
             || !free[Cell::new(row as usize, col as usize)]
     };
     let free_at = |x: f64, y: f64| !blocked_at(x, y);
+    let furniture_at = |x: f64, y: f64| {
+        x >= 0.0
+            && y >= 0.0
+            && furniture
+                .get(Cell::new(y.floor() as usize, x.floor() as usize))
+                .is_some_and(|&f| f)
+    };
     let steps = run.ceil().max(1.0) as usize;
     for k in 0..steps {
         let t = k as f64 + 0.5;
@@ -128,7 +163,7 @@ pub(super) fn jamb(free: &Grid<bool>, from: Pt, end: Pt, run: f64, wall_half: f6
         let on_wall = blocked_at(x, y)
             || blocked_at(x + nx * 0.7, y + ny * 0.7)
             || blocked_at(x - nx * 0.7, y - ny * 0.7);
-        if !on_wall {
+        if !on_wall || furniture_at(x, y) {
             return false;
         }
         // A thin wall: free on both sides, at most two half thicknesses
@@ -148,6 +183,25 @@ pub(super) fn jamb(free: &Grid<bool>, from: Pt, end: Pt, run: f64, wall_half: f6
         }
     }
     true
+}
+
+/// Whether the obstacle at `end` (coming from `from`) is `furniture`: the
+/// cell just beyond `end`, or beside it within a cell.
+pub(super) fn on_furniture(furniture: &Grid<bool>, from: Pt, end: Pt) -> bool {
+    let (dx, dy) = (end.0 - from.0, end.1 - from.1);
+    let len = dx.hypot(dy).max(1e-9);
+    let (ux, uy) = (dx / len, dy / len);
+    let (x, y) = (end.0 + ux * 0.5, end.1 + uy * 0.5);
+    [(0.0, 0.0), (-uy * 0.7, ux * 0.7), (uy * 0.7, -ux * 0.7)]
+        .iter()
+        .any(|&(ox, oy)| {
+            let (cx, cy) = (x + ox, y + oy);
+            cx >= 0.0
+                && cy >= 0.0
+                && furniture
+                    .get(Cell::new(cy.floor() as usize, cx.floor() as usize))
+                    .is_some_and(|&f| f)
+        })
 }
 
 /// The free cells a cut crosses, its ends pushed a cell into the walls so

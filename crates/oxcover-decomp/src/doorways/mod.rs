@@ -60,7 +60,10 @@ use oxcover_grid::{Cell, Dir4, Grid, components4};
 use crate::rooms::{Door, RoomParams, Rooms, doors, grow, label_the_rest, merge_small_regions};
 use crate::voronoi_rooms::axis_cells_in;
 
-use lines::{JAMB_RUN_M, MIN_DOOR_M, WALL_HALF_M, critical_line, cut_cells_of, jamb, rings};
+use lines::{
+    ISLAND_M2, ISLAND_THICK_M, JAMB_RUN_M, MIN_DOOR_M, WALL_HALF_M, critical_line, cut_cells_of,
+    jamb, on_furniture, rings,
+};
 
 /// A point in grid coordinates (x = column, y = row).
 type Pt = (f64, f64);
@@ -147,6 +150,11 @@ fn doorways_in(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     let blocked = free.map(|&f| !f);
     let d4 = boundary_distance_sq4(&blocked, true);
     let clearance = |c: Cell| (d4[c] as f64).sqrt() / 2.0;
+    let furniture = furniture(
+        &blocked,
+        ISLAND_M2 * per_metre * per_metre,
+        (ISLAND_THICK_M * per_metre).round().max(2.0) as usize,
+    );
     let rings = rings(door_half);
     let narrowest_door = (MIN_DOOR_M / 2.0 * per_metre).max(1.5);
     // Critical lines of the narrow axis cells, kept where a wall ends in line.
@@ -164,7 +172,10 @@ fn doorways_in(free: &Grid<bool>, params: &RoomParams) -> Rooms {
         .par_iter()
         .filter_map(|&c| critical_line(free, &rings, c, clearance(c)))
         .filter(|cut| {
-            jamb(free, cut.b, cut.a, run, wall_half) || jamb(free, cut.a, cut.b, run, wall_half)
+            !on_furniture(&furniture, cut.b, cut.a)
+                && !on_furniture(&furniture, cut.a, cut.b)
+                && (jamb(free, &furniture, cut.b, cut.a, run, wall_half)
+                    || jamb(free, &furniture, cut.a, cut.b, run, wall_half))
         })
         .collect();
     let mut cuts = cuts;
@@ -214,6 +225,40 @@ fn doorways_in(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     merge_small_regions(&mut labels, min_cells);
     merge::join_pockets(&mut labels, min_cells);
     relabel(labels, min_cells)
+}
+
+/// The cells of the furniture among the obstacles of `blocked`: those
+/// that stand alone (not touching the grid's edge), under `most` cells,
+/// at least `thick` cells across both ways and filling half their bounding
+/// box at least (a block, not a scanned wall's broken piece).
+fn furniture(blocked: &Grid<bool>, most: f64, thick: usize) -> Grid<bool> {
+    let islands = components4(blocked);
+    let (w, h) = (blocked.width(), blocked.height());
+    let n = islands.sizes.len() + 1;
+    // Each island's bounding box (rows, columns) and whether it touches
+    // the edge.
+    let mut boxes = vec![(usize::MAX, 0, usize::MAX, 0, false); n];
+    for c in blocked.true_cells() {
+        let b = &mut boxes[islands.labels[c] as usize];
+        *b = (
+            b.0.min(c.row),
+            b.1.max(c.row + 1),
+            b.2.min(c.col),
+            b.3.max(c.col + 1),
+            b.4 || c.row == 0 || c.col == 0 || c.row + 1 == h || c.col + 1 == w,
+        );
+    }
+    let keep: Vec<bool> = (0..n)
+        .map(|l| {
+            let Some(&size) = l.checked_sub(1).and_then(|i| islands.sizes.get(i)) else {
+                return false;
+            };
+            let (r0, r1, c0, c1, edge) = boxes[l];
+            let (bh, bw) = (r1 - r0, c1 - c0);
+            !edge && (size as f64) < most && bh.min(bw) >= thick && 2 * size >= bh * bw
+        })
+        .collect();
+    islands.labels.map(|&l| keep[l as usize])
 }
 
 /// `labels` renumbered top-left first: rooms of at least `min_cells` in

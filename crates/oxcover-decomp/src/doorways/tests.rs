@@ -18,3 +18,60 @@ fn a_gap_in_a_thin_wall_is_a_door() {
     let r = doorways(&free, &RoomParams::indoor(0.05));
     assert_eq!(r.count(), 2, "{:?}", r.areas);
 }
+
+#[test]
+fn no_free_cell_gives_no_room() {
+    for free in [Grid::new(40, 30, false), Grid::new(0, 0, false)] {
+        let r = doorways(&free, &RoomParams::indoor(0.05));
+        assert_eq!((r.count(), r.seeded, r.doors.len()), (0, 0, 0));
+    }
+}
+
+#[test]
+fn one_open_hall_is_one_room() {
+    // 30 m x 20 m, no wall inside.
+    let free = Grid::from_fn(600, 400, |c: Cell| {
+        (1..599).contains(&c.col) && (1..399).contains(&c.row)
+    });
+    let r = doorways(&free, &RoomParams::indoor(0.05));
+    assert_eq!((r.count(), r.seeded), (1, 1));
+}
+
+#[test]
+fn one_cell_corridors_give_labels_not_a_panic() {
+    // A comb of corridors one cell wide, every other column.
+    let free = Grid::from_fn(41, 41, |c: Cell| c.row == 20 || c.col % 2 == 1);
+    let r = doorways(&free, &RoomParams::indoor(0.05));
+    for c in free.cells() {
+        assert_eq!(free[c], r.labels[c] != 0, "{c:?}");
+    }
+    // And at a bad resolution: every free cell one room of one cell or more.
+    let r = doorways(&free, &RoomParams::indoor(f64::NAN));
+    assert!(r.count() >= 1);
+}
+
+#[test]
+fn labels_do_not_depend_on_the_thread_count() {
+    let free = two_rooms();
+    let params = RoomParams::indoor(0.05);
+    let run = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("a pool")
+            .install(|| doorways(&free, &params))
+    };
+    let one = run(1);
+    assert_eq!(one, run(2));
+    assert_eq!(one, run(5));
+}
+
+#[test]
+fn labels_are_numbered_top_left_first() {
+    let r = doorways(&two_rooms(), &RoomParams::indoor(0.05));
+    // The upper room holds the first free cell in row-major order.
+    assert_eq!(r.labels[Cell::new(2, 2)], 1);
+    assert_eq!(r.labels[Cell::new(87, 61)], 2);
+    assert_eq!(r.doors.len(), 1);
+    assert_eq!(r.doors[0].rooms, (1, 2));
+}

@@ -14,10 +14,12 @@ use super::args::{MapArgs, PNG, SVG, asked, check_outputs, load};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum MethodArg {
+    /// Split where a wall has a gap: doors between wall ends, walls
+    /// continued across a room's open side (the rooms people name).
+    Doorways,
     /// Erode until the free space splits into room-sized pieces, grow them back.
     Morphological,
-    /// Split at the narrow points of the distance transform's medial axis
-    /// (doors): the rooms `plan` goes by.
+    /// Split at the narrow points of the distance transform's medial axis.
     Voronoi,
 }
 
@@ -26,12 +28,12 @@ pub(crate) struct SegmentArgs {
     /// Map file (.yaml, .pgm, .png, .bmp or .map).
     pub(crate) map: PathBuf,
     /// Segmentation method.
-    #[arg(long, value_enum, default_value_t = MethodArg::Voronoi)]
+    #[arg(long, value_enum, default_value_t = MethodArg::Doorways)]
     pub(crate) method: MethodArg,
     #[command(flatten)]
     pub(crate) reading: MapArgs,
     /// Smallest room in m² (morphological: what erosion leaves of a room;
-    /// voronoi: smaller regions join a neighbour).
+    /// doorways, voronoi: smaller regions join a neighbour).
     #[arg(
         long,
         value_name = "M2",
@@ -47,7 +49,7 @@ pub(crate) struct SegmentArgs {
         allow_negative_numbers = true
     )]
     pub(crate) max_area: f64,
-    /// Widest opening taken for a door, in metres (voronoi).
+    /// Widest opening taken for a door, in metres (doorways, voronoi).
     #[arg(
         long,
         value_name = "M",
@@ -82,6 +84,7 @@ pub(crate) fn cmd_segment(a: &SegmentArgs) -> Result<()> {
     let map = load(&a.map, &a.reading)?;
     let options = SegmentOptions {
         method: match a.method {
+            MethodArg::Doorways => Method::Doorways,
             MethodArg::Morphological => Method::Morphological,
             MethodArg::Voronoi => Method::Voronoi,
         },
