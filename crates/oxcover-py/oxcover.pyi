@@ -146,7 +146,7 @@ def evaluate(
 def segment(
     map: Map,
     *,
-    method: Literal["voronoi", "morphological"] = "voronoi",
+    method: Literal["doorways", "voronoi", "morphological"] = "doorways",
     min_area: float = 1.0,
     max_area: float = 47.0,
     door_width: float = 1.6,

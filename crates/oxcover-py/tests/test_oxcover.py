@@ -180,6 +180,7 @@ def test_segment_matches_the_command_line(cli, tmp_path):
     assert ours == theirs
     assert labels.shape == m.shape and labels.dtype == np.uint32
     assert theirs["seeded"] >= 2
+    assert theirs["method"] == "doorways"
     # Every free cell has a room; the labels are the report's rooms.
     free = m.free_mask()
     assert ((labels > 0) == free).all()
