@@ -67,7 +67,8 @@ pub fn ceiling(map: &OccupancyGrid, radius: f64, time: &TimeModel) -> anyhow::Re
     let res = map.resolution();
     let cells = problem.cells();
     let area = cells.coverable.count_true() as f64 * res * res;
-    let bound_s = time.time(area / (2.0 * radius), 0.0);
+    let swept = (area - std::f64::consts::PI * radius * radius).max(0.0);
+    let bound_s = time.time(swept / (2.0 * radius), 0.0);
     let region = &cells.reachable;
     let (filled, holes) = fill_holes(region);
     let spacing = 2.0 * radius / res;

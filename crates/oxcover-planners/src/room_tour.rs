@@ -129,7 +129,9 @@ impl RoomUnits {
 }
 
 /// The order (unit numbers) in which to cover `units`, starting with the
-/// unit of the problem's start cell, minimising estimated transit time.
+/// unit of the problem's start cell (or, when the start lies in no unit,
+/// with the unit the tour from the start makes best), minimising
+/// estimated transit time.
 #[must_use]
 pub fn room_order(problem: &CoverageProblem, units: &RoomUnits) -> Vec<u32> {
     let n = units.count();
@@ -139,7 +141,13 @@ pub fn room_order(problem: &CoverageProblem, units: &RoomUnits) -> Vec<u32> {
     let coarse = problem.coarse();
     let res = problem.frame().resolution();
     let block = coarse.block_size() as f64;
-    let anchors = units.anchors();
+    let mut anchors = units.anchors();
+    let start_unit = units.unit_of(problem.start_cell());
+    // A start outside every unit is one more stop, the tour's first.
+    if start_unit == 0 {
+        anchors.push(problem.start_cell());
+    }
+    let (units_n, n) = (n, anchors.len());
     // Each anchor's coverage cell, if it has a representative (tiny units
     // may lie in a coverage cell represented elsewhere: same cell then).
     let passable = coarse.passable();
@@ -176,9 +184,14 @@ pub fn room_order(problem: &CoverageProblem, units: &RoomUnits) -> Vec<u32> {
         };
         d / v
     };
-    let first = units.unit_of(problem.start_cell()).max(1) as usize - 1;
+    let first = if start_unit == 0 {
+        units_n
+    } else {
+        start_unit as usize - 1
+    };
     open_tour(n, first, &cost)
         .into_iter()
+        .filter(|&i| i < units_n)
         .map(|i| i as u32 + 1)
         .collect()
 }

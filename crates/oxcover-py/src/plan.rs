@@ -300,6 +300,7 @@ pub(crate) fn plan(
         rooms,
         time: time_model(speed, turn_rate)?,
         memory_limit: memory_limit.bytes(),
+        targets: oxcover::targets::Targets::default(),
     };
     request
         .check_memory(&grid, &map.name)

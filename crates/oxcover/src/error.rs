@@ -60,6 +60,15 @@ pub enum Error {
         /// The operating system's reason.
         source: std::io::Error,
     },
+    /// A coverage target cannot be used: the option or file, and what is
+    /// wrong with it.
+    #[error("{what}: {message}")]
+    Target {
+        /// The option (and its file).
+        what: String,
+        /// What is wrong and what was expected.
+        message: String,
+    },
     /// Planning would need more memory than the budget allows: the map, its
     /// size, the planner, the estimate, the budget and what helps.
     #[error("{0}")]

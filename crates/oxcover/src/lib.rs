@@ -26,6 +26,8 @@
 //! - [`report`]: the JSON report of `plan --report`.
 //! - [`rooms`]: rooms of a map in metres, as JSON and as a picture
 //!   (`oxcover segment`).
+//! - [`targets`]: coverage targets (zones, spot, keep-out areas and virtual
+//!   walls from GeoJSON, chosen rooms, resume) as cells.
 //!
 //! The command line (`oxcover`, including `map-from-camera` on
 //! [`oxcover_vision`]) is the binary's own and uses only this API.
@@ -60,6 +62,7 @@ pub mod pipeline;
 pub mod render;
 pub mod report;
 pub mod rooms;
+pub mod targets;
 
 pub use error::{Error, Result};
 pub use metrics::{Evaluation, MetricParams, Metrics, evaluate};

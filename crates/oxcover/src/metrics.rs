@@ -10,7 +10,7 @@
 //! | `redundancy` | `length_m · 2T / covered area` (1.0 = no overlap; `null` when nothing is covered) |
 //! | `steps` | `length_m / resolution` |
 //! | `est_time_s` | `length_m / v + rotation_rad / w`, v = 0.3 m/s, w = 0.52 rad/s unless set |
-//! | `bound_time_s` | `covered area / 2T / v`: straight lanes of the tool's width, no overlap, no turn |
+//! | `bound_time_s` | `max(0, covered area - pi T^2) / 2T / v`: straight lanes of the tool's width, no overlap, no turn (a disc covers pi T^2 without moving) |
 //! | `time_efficiency` | `bound_time_s / est_time_s` (`null` when the path takes no time) |
 //!
 //! The coverable set is the contract's, built from the path's first waypoint as
@@ -50,8 +50,9 @@ pub struct Metrics {
     pub steps: f64,
     /// `length / v + rotation / w` in seconds.
     pub est_time_s: f64,
-    /// `covered area / 2T / v` in seconds: straight lanes of the tool's
-    /// width, no overlap, no turn (a lower bound in practice).
+    /// `max(0, covered area - pi T^2) / 2T / v` in seconds: straight lanes
+    /// of the tool's width, no overlap, no turn (a lower bound in practice;
+    /// a disc covers pi T^2 without moving).
     pub bound_time_s: f64,
     /// `bound_time_s / est_time_s`; `None` (JSON null) when the path takes
     /// no time (a single waypoint).
@@ -166,7 +167,9 @@ pub(crate) fn evaluate_covered(
     let shape = PathShape::of(points, res);
     let covered_area = covered_cells as f64 * res * res;
     let est_time_s = params.time(shape.length_m, shape.rotation_rad);
-    let bound_time_s = covered_area / (2.0 * tool) / params.linear_speed;
+    // A disc covers pi T^2 without moving.
+    let swept = (covered_area - std::f64::consts::PI * tool * tool).max(0.0);
+    let bound_time_s = swept / (2.0 * tool) / params.linear_speed;
     let metrics = Metrics {
         coverage: if coverable_cells == 0 {
             0.0
@@ -342,8 +345,9 @@ mod tests {
         assert_eq!(m.turns, 2);
         assert_eq!(m.redundancy, Some(7.0 / 8.0));
         assert!((m.est_time_s - (7.0 / 0.3 + PI / 0.52)).abs() < 1e-9);
-        // 8 covered cells of 1 m², a tool 1 m wide, at 0.3 m/s.
-        assert!((m.bound_time_s - 8.0 / 0.3).abs() < 1e-9);
+        // 8 covered cells of 1 m², less the disc of radius 0.5 m the tool
+        // covers standing still, a tool 1 m wide, at 0.3 m/s.
+        assert!((m.bound_time_s - (8.0 - PI * 0.25) / 0.3).abs() < 1e-9);
         let eff = m.time_efficiency.unwrap_or_default();
         assert!((eff - m.bound_time_s / m.est_time_s).abs() < 1e-12);
         let slow = evaluate(
@@ -355,7 +359,7 @@ mod tests {
         .unwrap()
         .metrics;
         assert!((slow.est_time_s - (7.0 / 0.1 + PI)).abs() < 1e-9);
-        assert!((slow.bound_time_s - 80.0).abs() < 1e-9);
+        assert!((slow.bound_time_s - (8.0 - PI * 0.25) / 0.1).abs() < 1e-9);
         assert_eq!(m.samples, 1 + 12 + 4 + 12);
     }
 

@@ -72,6 +72,9 @@ pub struct PlanReport {
     /// Room units planned one after another (null: the whole map at once,
     /// because rooms were off or the map has one room).
     pub room_units: Option<usize>,
+    /// The coverage target's cells (absent without targets).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub targets: Option<crate::targets::TargetSummary>,
     /// The metrics of the final path (flattened into the object).
     #[serde(flatten)]
     pub metrics: Metrics,

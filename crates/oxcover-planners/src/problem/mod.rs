@@ -143,6 +143,25 @@ impl CoverageProblem {
         self
     }
 
+    /// The same problem with only the coverable cells set in `required`
+    /// (the map's size) left to cover: a coverage target. Plannable cells
+    /// stay as they are (the robot may drive anywhere to reach the target).
+    ///
+    /// # Errors
+    /// [`Error::BadParameter`] when `required` is not the map's size.
+    pub fn with_required(mut self, required: &Grid<bool>) -> Result<Self> {
+        let c = &mut self.cells.coverable;
+        if (required.width(), required.height()) != (c.width(), c.height()) {
+            return Err(Error::BadParameter {
+                name: "required cells",
+                value: format!("{}x{}", required.width(), required.height()),
+                expected: "the map's size",
+            });
+        }
+        *c = c.zip_map(required, |&a, &b| a && b);
+        Ok(self)
+    }
+
     /// The speeds planners score their choices with.
     #[must_use]
     pub fn time(&self) -> TimeModel {

@@ -86,6 +86,14 @@ pub(crate) fn load(path: &Path, args: &MapArgs) -> Result<OccupancyGrid> {
     Ok(map)
 }
 
+/// Keeps `note` (if any) for the end of a command that succeeds.
+pub(crate) fn note_later(note: Option<String>) {
+    NOTES
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .extend(note);
+}
+
 /// Speeds for the estimated time (`est_time_s`, and what planners optimise).
 #[derive(Debug, clap::Args)]
 pub(crate) struct TimeArgs {

@@ -3,11 +3,12 @@
 use std::io::Write as _;
 use std::path::PathBuf;
 
-use oxcover::metrics::evaluate;
 use oxcover::path::read_csv;
+use oxcover::targets::evaluate_targets;
 use oxcover::{Error, Result};
 
 use super::args::{RobotArgs, TimeArgs, load, robot_of};
+use super::targets::TargetArgs;
 
 #[derive(Debug, clap::Args)]
 pub(crate) struct EvalArgs {
@@ -19,6 +20,8 @@ pub(crate) struct EvalArgs {
     pub(crate) robot: RobotArgs,
     #[command(flatten)]
     pub(crate) time: TimeArgs,
+    #[command(flatten)]
+    pub(crate) targets: TargetArgs,
 }
 
 pub(crate) fn cmd_eval(a: &EvalArgs) -> Result<()> {
@@ -26,7 +29,8 @@ pub(crate) fn cmd_eval(a: &EvalArgs) -> Result<()> {
     let robot = robot_of(&a.robot, &map)?;
     let time = a.time.model()?;
     let points = read_csv(&a.path)?;
-    let ev = evaluate(&map, robot, &points, &time)?;
+    let targets = a.targets.targets()?;
+    let ev = evaluate_targets(&map, robot, &points, &time, &targets)?;
     let json = serde_json::to_string_pretty(&ev.metrics)
         .map_err(|e| Error::Internal(format!("metrics serialisation failed: {e}")))?;
     let _ = writeln!(super::out::stdout(), "{json}");

@@ -19,6 +19,7 @@ mod plan;
 mod render;
 mod segment;
 mod simulate;
+mod targets;
 
 use std::io::Write as _;
 use std::process::ExitCode;

@@ -8,11 +8,13 @@ use oxcover::grid::{OccupancyGrid, Point};
 use oxcover::pipeline::{Outputs, PlanRequest, coverage_notes, plan, planner, write_outputs};
 use oxcover::planners::{PlannerOptions, Start};
 use oxcover::report::table;
+use oxcover::targets::resume_start;
 
 use super::args::{
-    ANY, OnOff, Output, PNG, RobotArgs, SVG, TimeArgs, asked, check_outputs, load, parse_start,
-    robot_of,
+    ANY, OnOff, Output, PNG, RobotArgs, SVG, TimeArgs, asked, check_outputs, load, note_later,
+    parse_start, robot_of,
 };
+use super::targets::TargetArgs;
 
 #[derive(Debug, clap::Args)]
 pub(crate) struct PlanArgs {
@@ -43,6 +45,8 @@ pub(crate) struct PlanArgs {
     pub(crate) rooms: OnOff,
     #[command(flatten)]
     pub(crate) time: TimeArgs,
+    #[command(flatten)]
+    pub(crate) targets: TargetArgs,
     /// Sweep angle in degrees for boustrophedon, trapezoidal and lanes (lanes
     /// along it, counter-clockwise from the map's x axis) [default: the
     /// fastest of 0, 15, ..., 165; for lanes also the walls' directions, per
@@ -80,16 +84,28 @@ pub(crate) fn plan_outputs(a: &PlanArgs) -> Vec<Output<'_>> {
 
 /// The map and the plan request the `plan` options describe.
 pub(crate) fn map_and_request(a: &PlanArgs) -> Result<(OccupancyGrid, PlanRequest)> {
-    check_outputs(&[&a.map], &plan_outputs(a))?;
+    let mut inputs = vec![a.map.as_path()];
+    inputs.extend(a.targets.inputs());
+    check_outputs(&inputs, &plan_outputs(a))?;
     let map = load(&a.map, &a.robot.map)?;
     let robot = robot_of(&a.robot, &map)?;
     let time = a.time.model()?;
+    let targets = a.targets.targets()?;
+    let start = match (a.start, &targets.done) {
+        (None, Some(done)) => {
+            let (work_map, _) = targets.blocked_map(&map)?;
+            let (p, note) = resume_start(&work_map, robot.robot_radius, done)?;
+            note_later(note);
+            Start::At(p)
+        }
+        (start, _) => Start::from(start),
+    };
     let mut options = PlannerOptions::new();
     options.sweep_angle_deg = a.sweep_angle;
     let request = PlanRequest {
         planner: planner(&a.planner, &options)?,
         robot,
-        start: Start::from(a.start),
+        start,
         seed: a.seed,
         boundary_pass: a.boundary_pass == OnOff::On,
         rooms: a.rooms == OnOff::On,
@@ -99,6 +115,7 @@ pub(crate) fn map_and_request(a: &PlanArgs) -> Result<(OccupancyGrid, PlanReques
             Some("none") => None,
             Some(size) => Some(oxcover::memory::parse_size(size)?),
         },
+        targets,
     };
     request.check_memory(&map, &a.map.display().to_string())?;
     Ok((map, request))
@@ -129,9 +146,10 @@ pub(crate) fn cmd_plan(a: &PlanArgs) -> Result<()> {
         map.width(),
         map.height(),
         map.resolution(),
-        outcome
-            .room_units
-            .map_or_else(String::new, |n| format!(", {n} rooms")),
+        outcome.room_units.map_or_else(String::new, |n| format!(
+            ", {n} room{}",
+            if n == 1 { "" } else { "s" }
+        )),
         outcome.points.len(),
         outcome.plan_ms
     );
@@ -139,7 +157,14 @@ pub(crate) fn cmd_plan(a: &PlanArgs) -> Result<()> {
     for w in written {
         let _ = writeln!(out, "wrote {}", w.display());
     }
-    for note in coverage_notes(&map, &outcome.evaluation.problem, a.start.is_none()) {
+    let default_start = a.start.is_none() && a.targets.done.is_none();
+    // With a target, the coverable cells outside it are not missing.
+    let notes = if request.targets.narrows() {
+        Vec::new()
+    } else {
+        coverage_notes(&map, &outcome.evaluation.problem, default_start)
+    };
+    for note in outcome.notes.iter().cloned().chain(notes) {
         let _ = writeln!(std::io::stderr(), "note: {note}");
     }
     Ok(())

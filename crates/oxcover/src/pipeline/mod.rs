@@ -25,11 +25,14 @@ mod tests;
 
 use std::time::Instant;
 
-use oxcover_grid::OccupancyGrid;
+use oxcover_decomp::Rooms;
+use oxcover_grid::{Grid, OccupancyGrid, coverable_cells};
+use oxcover_planners::{CoverageProblem, RoomUnits, Start};
 
 use self::region::plan_whole;
-use self::rooms::{in_several_rooms, plan_rooms, room_labels, units_of};
+use self::rooms::{in_several_rooms, min_unit_cells, plan_rooms, room_labels, units_of};
 use crate::error::Result;
+use crate::targets::{RoomOrder, TargetCells, TargetSummary};
 
 pub use self::load::{MapReading, load_map, load_map_with};
 pub use self::outputs::{Outputs, coverage_notes, metres, plan_scene, short_name, write_outputs};
@@ -62,20 +65,124 @@ pub use self::rooms::{MIN_UNIT_M2, room_units};
 pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
     request.check_memory(map, "map")?;
     let t0 = Instant::now();
+    let targets = &request.targets;
+    let (work_map, blocked_cells) = targets.blocked_map(map)?;
+    keep_out_spares_start(map, &work_map, request)?;
     // The segmentation needs only the map: found while the problem is
     // built (same result whatever the thread count).
     let (problem, rooms) = rayon::join(
-        || request.problem(map),
-        || request.rooms.then(|| room_labels(map)),
+        || request.problem(&work_map),
+        || request.rooms.then(|| room_labels(&work_map)),
     );
     let problem = problem?;
+    if let Some(target) = targets.required(map, problem.cells())? {
+        let mut outcome = plan_target(problem, &target, rooms.as_ref(), request, t0)?;
+        let res = map.resolution();
+        let required_cells = target.required.count_true();
+        outcome.targets = Some(TargetSummary {
+            required_cells,
+            required_area_m2: required_cells as f64 * res * res,
+            done_cells: target.done_cells,
+            blocked_cells,
+        });
+        outcome.notes = target.notes;
+        return Ok(outcome);
+    }
     // The plannable cells are one 4-connected region: all in one room,
     // they are one unit, planned whole (no units to find).
     let units = rooms
         .filter(|rooms| in_several_rooms(problem.plannable(), &rooms.labels))
         .map(|rooms| units_of(&problem, &rooms));
-    match units.filter(|u| u.count() > 1) {
-        Some(units) => plan_rooms(&problem, &units, request, t0),
+    let mut outcome = match units.filter(|u| u.count() > 1) {
+        Some(units) => plan_rooms(&problem, &units, None, request, t0),
         None => plan_whole(&problem, request, t0),
+    }?;
+    if targets.keep_out.is_some() {
+        outcome.targets = Some(TargetSummary {
+            required_cells: outcome.evaluation.metrics.coverable_cells,
+            required_area_m2: outcome.evaluation.metrics.coverable_cells as f64
+                * map.resolution()
+                * map.resolution(),
+            done_cells: 0,
+            blocked_cells,
+        });
     }
+    Ok(outcome)
+}
+
+/// A start given in metres that keep-out areas cover is refused by name
+/// (not as a start that is not admissible).
+fn keep_out_spares_start(
+    map: &OccupancyGrid,
+    work_map: &OccupancyGrid,
+    request: &PlanRequest,
+) -> Result<()> {
+    if let Start::At(p) = request.start
+        && let Some(c) = map.frame().cell_at(&p)
+        && map.is_free(c)
+        && !work_map.is_free(c)
+    {
+        return Err(crate::Error::Target {
+            what: "--keep-out".into(),
+            message: format!(
+                "a keep-out area or virtual wall covers the start ({}, {})",
+                p.x, p.y
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// Plans a coverage target: the plannable cells within the tool's reach of
+/// a required cell, cut into units (by the chosen rooms, else by the
+/// plan's rooms when rooms are on) and planned unit by unit, the robot
+/// free to drive anywhere between them.
+fn plan_target(
+    problem: CoverageProblem,
+    target: &TargetCells,
+    rooms: Option<&Rooms>,
+    request: &PlanRequest,
+    t0: Instant,
+) -> Result<PlanOutcome> {
+    let problem = problem.with_required(&target.required)?;
+    let near = coverable_cells(problem.plannable(), &target.required, problem.tool_cells());
+    let (w, h) = (near.width(), near.height());
+    let labels = match (&target.room_labels, rooms) {
+        (Some(chosen), _) => chosen.clone(),
+        (None, Some(rooms)) => rooms.labels.clone(),
+        (None, None) => Grid::new(w, h, 1),
+    };
+    let units = RoomUnits::new(&near, &labels, min_unit_cells(&problem));
+    let order = match (&request.targets.rooms_only, request.targets.room_order) {
+        (Some(chosen), RoomOrder::Given) => Some(given_order(&units, &labels, chosen)),
+        _ => None,
+    };
+    plan_rooms(&problem, &units, order, request, t0)
+}
+
+/// The units in the order of the room labels `chosen`: each unit goes with
+/// the chosen room most of its cells lie in (ties: the first unit first).
+fn given_order(units: &RoomUnits, labels: &Grid<u32>, chosen: &[u32]) -> Vec<u32> {
+    let n = units.count();
+    let mut votes = vec![vec![0usize; chosen.len()]; n];
+    for c in units.labels.cells() {
+        let u = units.labels[c] as usize;
+        if u > 0
+            && let Some(k) = chosen.iter().position(|&l| l == labels[c])
+        {
+            votes[u - 1][k] += 1;
+        }
+    }
+    let rank = |u: usize| {
+        let v = &votes[u];
+        // Most cells; a unit of no chosen room goes last.
+        v.iter()
+            .enumerate()
+            .max_by_key(|&(k, &count)| (count, std::cmp::Reverse(k)))
+            .filter(|&(_, &count)| count > 0)
+            .map_or(chosen.len(), |(k, _)| k)
+    };
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by_key(|&u| (rank(u), u));
+    order.into_iter().map(|u| u as u32 + 1).collect()
 }

@@ -10,7 +10,7 @@ use super::request::{PlanOutcome, PlanRequest};
 use crate::error::{Error, Result};
 use crate::output::write_files;
 use crate::path::to_csv;
-use crate::render::{Scene, render_bytes};
+use crate::render::{Overlay, Scene, render_bytes};
 use crate::report::metric_rows;
 
 /// Where to write a plan's outputs (each optional).
@@ -68,7 +68,11 @@ pub fn write_outputs(
     if let Some(p) = out.csv {
         files.push((p.to_path_buf(), to_csv(&outcome.points).into_bytes()));
     }
-    let scene = plan_scene(map, map_name, request, outcome);
+    let mut scene = plan_scene(map, map_name, request, outcome);
+    let overlay = crate::targets::target_overlay(&request.targets);
+    if overlay != Overlay::default() {
+        scene.overlay = Some(&overlay);
+    }
     for p in [out.svg, out.png].into_iter().flatten() {
         files.push((p.to_path_buf(), render_bytes(&scene, p)?));
     }

@@ -296,6 +296,8 @@ pub(super) fn finish(
         room_stretches,
         coarse_block: problem.block(),
         plan_ms,
+        targets: None,
+        notes: Vec::new(),
     })
 }
 

@@ -13,6 +13,7 @@ use serde::Serialize;
 use crate::error::{Error, Result};
 use crate::metrics::Evaluation;
 use crate::report::{BoundaryStats, PlanParameters, PlanReport, metric_rows};
+use crate::targets::{TargetSummary, Targets};
 
 /// A registered planner, as `oxcover planners` lists it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -89,6 +90,9 @@ pub struct PlanRequest {
     /// [`crate::memory::default_limit`] (3/4 of the machine's memory);
     /// `None` plans whatever the size.
     pub memory_limit: Option<u64>,
+    /// What to cover and what never to enter (default: every coverable
+    /// cell, nothing blocked).
+    pub targets: Targets,
 }
 
 impl std::fmt::Debug for PlanRequest {
@@ -103,6 +107,7 @@ impl std::fmt::Debug for PlanRequest {
             .field("rooms", &self.rooms)
             .field("time", &self.time)
             .field("memory_limit", &self.memory_limit)
+            .field("targets", &self.targets)
             .finish()
     }
 }
@@ -134,6 +139,7 @@ impl PlanRequest {
             rooms: true,
             time: TimeModel::default(),
             memory_limit: crate::memory::default_limit(),
+            targets: Targets::default(),
         }
     }
 
@@ -209,6 +215,13 @@ impl PlanRequest {
         self
     }
 
+    /// The same request with coverage targets.
+    #[must_use]
+    pub fn targets(mut self, targets: Targets) -> Self {
+        self.targets = targets;
+        self
+    }
+
     /// The same request with other speeds for estimated time.
     #[must_use]
     pub fn time(mut self, time: TimeModel) -> Self {
@@ -263,6 +276,10 @@ pub struct PlanOutcome {
     pub coarse_block: usize,
     /// Planning time in milliseconds (problem, rooms, planner, boundary pass).
     pub plan_ms: f64,
+    /// The coverage target's cells, when targets were given.
+    pub targets: Option<TargetSummary>,
+    /// Notes on the targets for the user (a zone clipped to the map).
+    pub notes: Vec<String>,
 }
 
 impl PlanOutcome {
@@ -278,6 +295,17 @@ impl PlanOutcome {
                 format!("{:.4}", self.coverage_without_boundary_pass),
             ),
         );
+        if let Some(t) = &self.targets {
+            rows.extend([
+                ("required cells".into(), t.required_cells.to_string()),
+                (
+                    "required area".into(),
+                    format!("{:.2} m2", t.required_area_m2),
+                ),
+                ("done cells".into(), t.done_cells.to_string()),
+                ("keep-out cells".into(), t.blocked_cells.to_string()),
+            ]);
+        }
         rows
     }
 
@@ -317,6 +345,7 @@ impl PlanOutcome {
                 },
             }),
             room_units: self.room_units,
+            targets: self.targets,
             metrics: self.evaluation.metrics.clone(),
         }
     }

@@ -58,20 +58,26 @@ pub(super) fn in_several_rooms(plannable: &Grid<bool>, labels: &Grid<u32>) -> bo
 
 /// The units of `rooms` for `problem` (see [`super::room_units`]).
 pub(super) fn units_of(problem: &CoverageProblem, rooms: &Rooms) -> RoomUnits {
-    let block = problem.block();
-    let res = problem.frame().resolution();
-    let min = ((MIN_UNIT_M2 / (res * res)) as usize).max(4 * block * block);
-    RoomUnits::new(problem.plannable(), &rooms.labels, min)
+    RoomUnits::new(problem.plannable(), &rooms.labels, min_unit_cells(problem))
 }
 
-/// Plans unit by unit in the order of [`oxcover_planners::room_order`].
+/// The fewest plannable cells a unit keeps alone: [`MIN_UNIT_M2`], and at
+/// least four coverage cells.
+pub(super) fn min_unit_cells(problem: &CoverageProblem) -> usize {
+    let block = problem.block();
+    let res = problem.frame().resolution();
+    ((MIN_UNIT_M2 / (res * res)) as usize).max(4 * block * block)
+}
+
+/// Plans unit by unit in `order` (default: [`oxcover_planners::room_order`]).
 pub(super) fn plan_rooms(
     problem: &CoverageProblem,
     units: &RoomUnits,
+    order: Option<Vec<u32>>,
     request: &PlanRequest,
     t0: Instant,
 ) -> Result<PlanOutcome> {
-    let order = room_order(problem, units);
+    let order = order.unwrap_or_else(|| room_order(problem, units));
     let exits = unit_exits(problem, units, &order);
     let claims = unit_claims(problem, units);
     let plan_cells = problem.plannable().count_true();
@@ -84,13 +90,21 @@ pub(super) fn plan_rooms(
     let mut stretches = Vec::with_capacity(order.len());
     let mut wave = problem.transit_wavefront();
     for (i, &u) in order.iter().enumerate() {
-        let (entry, prefix) = if i == 0 {
+        // The start may lie outside every unit (a coverage target).
+        let transit = i > 0 || units.labels[here] != u;
+        let (entry, prefix) = if !transit {
             (here, start_prefix(problem))
         } else {
             let t = problem.transit_reusing(&mut wave, here, |c| units.labels[c] == u)?;
             let entry = t.cells.last().copied().unwrap_or(here);
+            if i == 0 {
+                cells.push(here);
+            }
             cells.extend(t.cells.iter().skip(1).copied());
             let mut prefix = t.points;
+            if i == 0 {
+                prefix.splice(0..0, start_prefix(problem));
+            }
             prefix.pop();
             (entry, prefix)
         };
@@ -115,7 +129,7 @@ pub(super) fn plan_rooms(
             unit: u,
             points: points.len().saturating_sub(work)..points.len(),
         });
-        cells.extend(region.cells.iter().skip(usize::from(i > 0)).copied());
+        cells.extend(region.cells.iter().skip(usize::from(transit)).copied());
         raws.push(region.raw);
         if let Some(b) = region.boundary {
             let total = boundary.get_or_insert(BoundaryRoute {

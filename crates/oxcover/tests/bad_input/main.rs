@@ -7,6 +7,7 @@
 mod inputs;
 mod limits;
 mod outputs;
+mod targets;
 
 use std::path::{Path, PathBuf};
 

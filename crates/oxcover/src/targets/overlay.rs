@@ -1,0 +1,137 @@
+//! Targets drawn over a plan's picture: zones and the spot outlined,
+//! keep-out areas outlined and hatched, virtual walls as thick strokes,
+//! the done path in grey.
+
+use geo::{LineString, Polygon};
+use oxcover_grid::Point;
+
+use super::Targets;
+use crate::render::{LegendMark, Overlay};
+
+const ZONE: [u8; 3] = [30, 150, 60];
+const KEEP_OUT: [u8; 3] = [200, 40, 40];
+const DONE: [u8; 3] = [130, 130, 130];
+
+/// Hatch lines this far apart (metres) at least, and at most this many
+/// across one area's bounding box.
+const HATCH_MIN_M: f64 = 0.1;
+const HATCH_LINES: f64 = 24.0;
+
+fn point(c: geo::Coord<f64>) -> Point {
+    Point::new(c.x, c.y)
+}
+
+fn outline(ring: &LineString<f64>, rgb: [u8; 3], overlay: &mut Overlay) {
+    for l in ring.lines() {
+        overlay.lines.push((point(l.start), point(l.end), rgb));
+    }
+}
+
+/// The stretches of the line `y - x = k` inside `polygon` (even-odd over
+/// all its rings), as segment pairs.
+fn hatch_at(polygon: &Polygon<f64>, k: f64) -> Vec<(Point, Point)> {
+    let mut xs: Vec<f64> = Vec::new();
+    let rings = std::iter::once(polygon.exterior()).chain(polygon.interiors());
+    for ring in rings {
+        for l in ring.lines() {
+            // Where the edge's points a + t (b - a) meet y - x = k.
+            let (fa, fb) = (l.start.y - l.start.x - k, l.end.y - l.end.x - k);
+            if (fa < 0.0) != (fb < 0.0) {
+                let t = fa / (fa - fb);
+                xs.push(l.start.x + t * (l.end.x - l.start.x));
+            }
+        }
+    }
+    xs.sort_by(f64::total_cmp);
+    xs.chunks_exact(2)
+        .map(|p| (Point::new(p[0], p[0] + k), Point::new(p[1], p[1] + k)))
+        .collect()
+}
+
+fn hatch(polygon: &Polygon<f64>, rgb: [u8; 3], overlay: &mut Overlay) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for c in polygon.exterior().coords() {
+        lo = lo.min(c.y - c.x);
+        hi = hi.max(c.y - c.x);
+    }
+    if !(lo.is_finite() && hi.is_finite()) {
+        return;
+    }
+    let step = ((hi - lo) / HATCH_LINES).max(HATCH_MIN_M);
+    let mut k = lo + step / 2.0;
+    while k < hi {
+        for (a, b) in hatch_at(polygon, k) {
+            overlay.lines.push((a, b, rgb));
+        }
+        k += step;
+    }
+}
+
+/// The drawing of `targets` (empty when there is none).
+#[must_use]
+pub fn target_overlay(targets: &Targets) -> Overlay {
+    let mut o = Overlay::default();
+    if let Some(done) = &targets.done {
+        o.strokes.push((done.clone(), DONE));
+        o.legend.push(("done".into(), DONE, LegendMark::Stroke));
+    }
+    let mut zone = false;
+    if let Some(z) = &targets.zones {
+        for p in &z.polygons {
+            outline(p.exterior(), ZONE, &mut o);
+            for h in p.interiors() {
+                outline(h, ZONE, &mut o);
+            }
+        }
+        zone = true;
+    }
+    if let Some(s) = targets.spot {
+        let n = 48;
+        let ring: Vec<Point> = (0..=n)
+            .map(|i| {
+                let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+                s.centre + s.radius * oxcover_grid::Vector::new(a.cos(), a.sin())
+            })
+            .collect();
+        for w in ring.windows(2) {
+            o.lines.push((w[0], w[1], ZONE));
+        }
+        zone = true;
+    }
+    if zone {
+        o.legend.push(("zone".into(), ZONE, LegendMark::Line));
+    }
+    if let Some(k) = &targets.keep_out {
+        for p in &k.polygons {
+            outline(p.exterior(), KEEP_OUT, &mut o);
+            hatch(p, KEEP_OUT, &mut o);
+        }
+        for l in &k.lines {
+            o.strokes
+                .push((l.coords().map(|&c| point(c)).collect(), KEEP_OUT));
+        }
+        o.legend
+            .push(("keep-out".into(), KEEP_OUT, LegendMark::Line));
+    }
+    o
+}
+
+#[cfg(test)]
+mod tests {
+    use geo::polygon;
+
+    use super::*;
+
+    #[test]
+    fn hatching_stays_inside_the_area_and_skips_its_hole() {
+        let outer =
+            polygon![(x: 0.0, y: 0.0), (x: 4.0, y: 0.0), (x: 4.0, y: 4.0), (x: 0.0, y: 4.0)];
+        let hole = polygon![(x: 1.0, y: 1.0), (x: 3.0, y: 1.0), (x: 3.0, y: 3.0), (x: 1.0, y: 3.0)];
+        let p = Polygon::new(outer.exterior().clone(), vec![hole.exterior().clone()]);
+        // The diagonal y = x crosses the outer square and the hole.
+        let s = hatch_at(&p, 0.0);
+        assert_eq!(s.len(), 2);
+        assert_eq!(s[0], (Point::new(0.0, 0.0), Point::new(1.0, 1.0)));
+        assert_eq!(s[1], (Point::new(3.0, 3.0), Point::new(4.0, 4.0)));
+    }
+}
