@@ -129,8 +129,17 @@ def plan(
     turn_rate: float = 0.52,
     sweep_angle: Optional[float] = None,
     memory_limit: Union[str, int, None] = "auto",
+    zones: Optional[PathLike] = None,
+    keep_out: Optional[PathLike] = None,
+    rooms_only: Optional[Sequence[int]] = None,
+    room_order: Literal["fastest", "given"] = "fastest",
+    done: Union[PathLike, npt.ArrayLike, None] = None,
+    spot: Optional[Tuple[float, float, float]] = None,
+    clearance: float = 0.0,
 ) -> Plan:
-    """Plans a coverage path, as `oxcover plan MAP --planner NAME`."""
+    """Plans a coverage path, as `oxcover plan MAP --planner NAME`; the
+    target keywords are the command line's `--zones`, `--keep-out`,
+    `--rooms-only`, `--room-order`, `--done`, `--spot`, `--clearance`."""
 
 def evaluate(
     map: Map,
@@ -140,8 +149,15 @@ def evaluate(
     tool_radius: Optional[float] = None,
     speed: float = 0.3,
     turn_rate: float = 0.52,
+    zones: Optional[PathLike] = None,
+    keep_out: Optional[PathLike] = None,
+    rooms_only: Optional[Sequence[int]] = None,
+    done: Union[PathLike, npt.ArrayLike, None] = None,
+    spot: Optional[Tuple[float, float, float]] = None,
+    clearance: float = 0.0,
 ) -> dict[str, Any]:
-    """The contract's metrics of a path (CSV file or N×2 array)."""
+    """The contract's metrics of a path (CSV file or N×2 array), against
+    the same targets as `oxcover eval` with the same options."""
 
 def segment(
     map: Map,

@@ -169,6 +169,22 @@ fn efficiency_section(root: &Path) -> anyhow::Result<()> {
             reference,
         );
     }
+    let zone = root.join("target/criterion/efficiency_zone");
+    if let Ok((whole, _)) = estimate_ns(&zone.join("lanes-whole-map")) {
+        md += "\nA zone against the whole map (group `efficiency_zone`): `lanes`, rooms on, on `lab_b.png`, the whole map (the reference) and a zone of a tenth of the map's extent at its centre (`--zones`); target: the zone at most a quarter of the whole map's time.\n\n| run | mean ms | sd ms | / reference | under 1 s |\n|---|---:|---:|---:|---|\n";
+        md += &ratio_rows(&zone, &["lanes-whole-map", "lanes-zone"], whole);
+        if let Ok((z, _)) = estimate_ns(&zone.join("lanes-zone")) {
+            md += &format!(
+                "\nZone / whole map: {:.2} (target at most 0.25: {}).\n",
+                z / whole,
+                if z / whole <= 0.25 {
+                    "met"
+                } else {
+                    "**not met**"
+                }
+            );
+        }
+    }
     crate::replace_section(&root.join("docs/benchmarks.md"), "efficiency", &md)?;
     Ok(())
 }

@@ -10,6 +10,8 @@
 //! - `plan`: `plan` (the same pipeline and the same path as `oxcover plan`),
 //!   the `Plan` it returns (path as an N×2 array, metrics, CSV, pictures,
 //!   files written whole or not at all), `evaluate`, `planners`.
+//! - `targets`: the coverage-target keywords of `plan` and `evaluate`
+//!   (`zones`, `keep_out`, `rooms_only`, `room_order`, `done`, `spot`).
 //! - `segment`: `segment`, rooms as a label array and the doors between them.
 //! - `simulate`: `simulate`, a `Plan` executed in closed loop.
 //! - `explore`: `explore`, the sensor-based planner on a polygonal world.
@@ -25,6 +27,7 @@ mod map;
 mod plan;
 mod segment;
 mod simulate;
+mod targets;
 
 use pyo3::prelude::*;
 

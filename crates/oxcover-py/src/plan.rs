@@ -16,6 +16,7 @@ use pyo3::types::{PyBytes, PyDict};
 
 use crate::convert::{bad, detached, error, path_argument, points_array, start_point, to_dict};
 use crate::map::Map;
+use crate::targets::targets_argument;
 
 /// The memory budget argument: `"auto"` (3/4 of the machine's memory), `None`
 /// or `"none"` (no limit), a size such as `"8G"`, or bytes.
@@ -261,15 +262,19 @@ pub(crate) fn planners<'py>(py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>
 /// several), `speed` (m/s) and `turn_rate` (rad/s) for the estimated time
 /// the planners minimise, `sweep_angle` (degrees) for the sweeping planners,
 /// `memory_limit` ("auto" = 3/4 of the machine's memory, None = no limit, a
-/// size such as "8G", or bytes).
+/// size such as "8G", or bytes). Coverage targets as the command line
+/// takes them: `zones` and `keep_out` (GeoJSON files), `rooms_only` (room
+/// labels) with `room_order` ("fastest" or "given"), `done` (a path file or
+/// an N×2 array: resume, starting where it stopped unless `start` is
+/// given), `spot` ((x, y, r) in metres), `clearance` (metres).
 ///
 /// The GIL is released while planning. Raises ValueError with the command
 /// line's message for a bad argument, an unknown planner, a start outside
 /// the free space or a map above the memory limit.
 #[pyfunction]
 #[pyo3(
-    signature = (map, planner, *, robot_radius = 0.0, tool_radius = None, start = None, seed = 0, boundary_pass = true, rooms = true, speed = 0.3, turn_rate = 0.52, sweep_angle = None, memory_limit = MemoryLimit::Auto),
-    text_signature = "(map, planner, *, robot_radius=0.0, tool_radius=None, start=None, seed=0, boundary_pass=True, rooms=True, speed=0.3, turn_rate=0.52, sweep_angle=None, memory_limit='auto')"
+    signature = (map, planner, *, robot_radius = 0.0, tool_radius = None, start = None, seed = 0, boundary_pass = true, rooms = true, speed = 0.3, turn_rate = 0.52, sweep_angle = None, memory_limit = MemoryLimit::Auto, zones = None, keep_out = None, rooms_only = None, room_order = "fastest", done = None, spot = None, clearance = 0.0),
+    text_signature = "(map, planner, *, robot_radius=0.0, tool_radius=None, start=None, seed=0, boundary_pass=True, rooms=True, speed=0.3, turn_rate=0.52, sweep_angle=None, memory_limit='auto', zones=None, keep_out=None, rooms_only=None, room_order='fastest', done=None, spot=None, clearance=0.0)"
 )]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn plan(
@@ -286,21 +291,42 @@ pub(crate) fn plan(
     turn_rate: f64,
     sweep_angle: Option<f64>,
     memory_limit: MemoryLimit,
+    zones: Option<PathBuf>,
+    keep_out: Option<PathBuf>,
+    rooms_only: Option<Vec<u32>>,
+    room_order: &str,
+    done: Option<&Bound<'_, PyAny>>,
+    spot: Option<(f64, f64, f64)>,
+    clearance: f64,
 ) -> PyResult<Plan> {
     let grid = Arc::clone(&map.grid);
     let mut options = PlannerOptions::new();
     options.sweep_angle_deg = sweep_angle;
+    let targets = targets_argument(zones, keep_out, rooms_only, room_order, done, spot)?;
+    let robot = robot(&grid, robot_radius, tool_radius)?;
+    // A resume starts where the done path stopped, as `oxcover plan` does.
+    let start = match start_point(start)? {
+        Some(p) => Start::At(p),
+        None => match targets
+            .default_start(&grid, robot.robot_radius + clearance.max(0.0))
+            .map_err(|e| error(&e))?
+        {
+            Some((p, _)) => Start::At(p),
+            None => Start::First,
+        },
+    };
     // The request `oxcover plan` makes of the same options.
     let request = PlanRequest {
         planner: oxcover::pipeline::planner(planner, &options).map_err(|e| error(&e))?,
-        robot: robot(&grid, robot_radius, tool_radius)?,
-        start: Start::from(start_point(start)?),
+        robot,
+        start,
         seed,
         boundary_pass,
         rooms,
         time: time_model(speed, turn_rate)?,
         memory_limit: memory_limit.bytes(),
-        targets: oxcover::targets::Targets::default(),
+        targets,
+        clearance,
     };
     request
         .check_memory(&grid, &map.name)
@@ -320,7 +346,8 @@ pub(crate) fn plan(
 /// prints them: `path` is a path file (CSV with header x,y) or an N×2
 /// array-like of x, y in metres (a `Plan.path`, a list of pairs).
 #[pyfunction]
-#[pyo3(signature = (map, path, *, robot_radius = 0.0, tool_radius = None, speed = 0.3, turn_rate = 0.52))]
+#[pyo3(signature = (map, path, *, robot_radius = 0.0, tool_radius = None, speed = 0.3, turn_rate = 0.52, zones = None, keep_out = None, rooms_only = None, done = None, spot = None, clearance = 0.0))]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn evaluate<'py>(
     py: Python<'py>,
     map: &Map,
@@ -329,11 +356,30 @@ pub(crate) fn evaluate<'py>(
     tool_radius: Option<f64>,
     speed: f64,
     turn_rate: f64,
+    zones: Option<PathBuf>,
+    keep_out: Option<PathBuf>,
+    rooms_only: Option<Vec<u32>>,
+    done: Option<&Bound<'py, PyAny>>,
+    spot: Option<(f64, f64, f64)>,
+    clearance: f64,
 ) -> PyResult<Bound<'py, PyAny>> {
     let grid = Arc::clone(&map.grid);
     let robot = robot(&grid, robot_radius, tool_radius)?;
+    if !(clearance.is_finite() && clearance >= 0.0) {
+        return Err(bad(
+            "clearance",
+            clearance,
+            "a finite distance of at least 0 metres",
+        ));
+    }
+    // Judged as `oxcover eval` judges: admissible at R + clearance.
+    let robot = DiscRobot::new(robot.robot_radius + clearance, robot.tool_radius)
+        .map_err(|e| error(&e.into()))?;
     let time = time_model(speed, turn_rate)?;
     let points = path_argument(path)?;
-    let evaluation = detached(py, || oxcover::evaluate(&grid, robot, &points, &time))?;
+    let targets = targets_argument(zones, keep_out, rooms_only, "fastest", done, spot)?;
+    let evaluation = detached(py, || {
+        oxcover::targets::evaluate_targets(&grid, robot, &points, &time, &targets)
+    })?;
     to_dict(py, &evaluation.metrics)
 }

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use numpy::IntoPyArray;
 use numpy::ndarray::Array2;
 use oxcover::Error;
-use oxcover::closed_loop::{ClosedLoop, ControllerKind, FLOOR_CLEANER, execute};
+use oxcover::closed_loop::{ClosedLoop, ControllerKind, FLOOR_CLEANER, execute_plan};
 use oxcover::robot::{Limits, RobotSpec};
 use pyo3::prelude::*;
 
@@ -18,7 +18,9 @@ const COLUMNS: [&str; 7] = ["x", "y", "theta", "t", "v", "omega", "energy"];
 
 /// Executes `plan` with a simulated differential-drive robot (time law,
 /// tracking controller, wheel limits, odometry noise) and scores the
-/// executed trajectory, as `oxcover simulate` does after planning.
+/// executed trajectory, as `oxcover simulate` does after planning
+/// (`oxcover simulate` plans with the robot's tracking margin plus half a
+/// cell as `clearance`: give `plan` the same to get its run).
 ///
 /// `robot_spec` is a robot description file (RON, see fixtures/robots;
 /// default: the bundled floor cleaner), `controller` "klancar" or
@@ -76,9 +78,7 @@ pub(crate) fn simulate<'py>(
         odometry_noise,
         seed: request.seed,
     };
-    let run = detached(py, || {
-        execute(&plan.map, request.robot, &plan.outcome.points, &cfg)
-    })?;
+    let run = detached(py, || execute_plan(&plan.map, request, &plan.outcome, &cfg))?;
     let planned_coverage = plan.outcome.evaluation.metrics.coverage;
     let flat: Vec<f64> = run
         .samples

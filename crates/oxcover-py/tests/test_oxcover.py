@@ -196,16 +196,23 @@ def test_simulate_matches_the_command_line(cli, tmp_path):
                "--odometry-noise", "0.01", "--seed", "3", "--out", out, *flags(ROBOT))
     assert done.returncode == 0, done.stderr
     m = oxcover.load_map("fixtures/maps/lee2011/living.yaml")
-    p = oxcover.plan(m, "boustrophedon", seed=3, **ROBOT)
+    # `oxcover simulate` plans with the robot's tracking margin (0.02 m)
+    # plus half a cell as clearance.
+    p = oxcover.plan(m, "boustrophedon", seed=3, clearance=0.02 + 0.05 / 2.0, **ROBOT)
     run = oxcover.simulate(p, odometry_noise=0.01)
     rows = np.loadtxt(out, delimiter=",", skiprows=1)
     assert out.read_text().splitlines()[0].split(",") == run["columns"]
     assert np.array_equal(run["samples"], rows)
-    assert run["warning"] is None
+    # The same warning as the command line's, if any.
+    warned = [l.removeprefix("warning: ") for l in done.stderr.splitlines() if l.startswith("warning: ")]
+    assert run["warning"] == (warned[0] if warned else None)
     assert run["metrics"]["coverage"] > 0.9
     assert not run["samples"].flags.writeable
     # The plan's seed drives the noise, as --seed does on the command line.
-    other = oxcover.simulate(oxcover.plan(m, "boustrophedon", seed=4, **ROBOT), odometry_noise=0.01)
+    other = oxcover.simulate(
+        oxcover.plan(m, "boustrophedon", seed=4, clearance=0.02 + 0.05 / 2.0, **ROBOT),
+        odometry_noise=0.01,
+    )
     assert not np.array_equal(other["samples"], run["samples"])
     assert run["report"]["planner"] == "boustrophedon"
 

@@ -287,6 +287,41 @@ pub fn execute(
     })
 }
 
+/// `outcome`, planned for `request` on `map`, executed as [`execute`]
+/// does: on the map with the request's keep-out cells blocked (collisions
+/// judged for the robot's own radius) and, where the plan had a target or
+/// a clearance, its coverage scored against the cells the plan had to
+/// cover. What `oxcover simulate` and Python's `simulate` run.
+///
+/// # Errors
+/// As [`execute`] and [`crate::targets::Targets::blocked_map`].
+pub fn execute_plan(
+    map: &OccupancyGrid,
+    request: &crate::pipeline::PlanRequest,
+    outcome: &crate::pipeline::PlanOutcome,
+    cfg: &ClosedLoop,
+) -> Result<Run> {
+    let targets = &request.targets;
+    let (work_map, _) = targets.blocked_map(map)?;
+    let mut run = execute(&work_map, request.robot, &outcome.points, cfg)?;
+    if targets.narrows() || request.clearance > 0.0 {
+        let executed: Vec<Point> = run
+            .samples
+            .iter()
+            .map(|s| Point::new(s.pose.x, s.pose.y))
+            .collect();
+        let mut problem = run.evaluation.problem.clone();
+        problem.coverable = outcome.evaluation.problem.coverable.clone();
+        run.evaluation = crate::metrics::evaluate_problem(
+            map.frame(),
+            problem,
+            &executed,
+            &MetricParams::default(),
+        );
+    }
+    Ok(run)
+}
+
 /// The path file of an executed run: `x,y,theta,t,v,omega,energy` (the
 /// contract's `x,y` first; the rest are the further columns it allows).
 #[must_use]

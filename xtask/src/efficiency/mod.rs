@@ -16,12 +16,15 @@
 //! - `stages`: what each stage of `lanes` buys (each turned off in turn);
 //! - `ceilings`: each map's lane-and-loop ceiling beside the best plan;
 //! - `benchmark`: the ipa targets with the plans read as their benchmark
-//!   reads them.
+//!   reads them;
+//! - `targets`: `lanes` with coverage targets (a zone, chosen rooms, a
+//!   resume, keep-out squares) on every map.
 
 mod benchmark;
 mod ceilings;
 mod runs;
 mod stages;
+mod targets;
 
 use std::fmt::Write as _;
 
@@ -500,6 +503,7 @@ pub fn run(only: Option<&str>, filter: Option<&str>) -> anyhow::Result<()> {
     } else {
         if names.contains(&"lanes") {
             md += &stages::section(&settings, &lanes_on, &mut failures);
+            md += &targets::section(&settings, &mut failures);
         }
         md += &crate::bare_rooms::section()?;
         md += "\n";

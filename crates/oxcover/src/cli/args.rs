@@ -26,6 +26,12 @@ pub(crate) struct RobotArgs {
     /// Tool (cleaning/sensing) radius in metres [default: resolution / 2].
     #[arg(long, value_name = "T", allow_negative_numbers = true)]
     pub(crate) tool_radius: Option<f64>,
+    /// Keep the path M metres further from walls, keep-out areas and
+    /// virtual walls than the robot radius requires (a real robot tracks
+    /// its path within a centimetre or two) [default: 0; simulate: the
+    /// robot description's tracking margin].
+    #[arg(long, value_name = "M", allow_negative_numbers = true)]
+    pub(crate) clearance: Option<f64>,
     #[command(flatten)]
     pub(crate) map: MapArgs,
 }
@@ -139,6 +145,28 @@ pub(crate) fn robot_of(args: &RobotArgs, map: &OccupancyGrid) -> Result<DiscRobo
         args.robot_radius.unwrap_or(0.0),
         args.tool_radius.unwrap_or(res / 2.0),
     )?)
+}
+
+/// The robot whose admissible cells the metrics judge: the body radius
+/// grown by `--clearance` (the contract: admissible means at least R + M).
+pub(crate) fn admissible_robot(args: &RobotArgs, map: &OccupancyGrid) -> Result<DiscRobot> {
+    let r = robot_of(args, map)?;
+    let m = clearance_of(args, 0.0)?;
+    Ok(DiscRobot::new(r.robot_radius + m, r.tool_radius)?)
+}
+
+/// `--clearance`, or `default` when not given.
+pub(crate) fn clearance_of(args: &RobotArgs, default: f64) -> Result<f64> {
+    let m = args.clearance.unwrap_or(default);
+    if m.is_finite() && m >= 0.0 {
+        Ok(m)
+    } else {
+        Err(Error::BadParameter {
+            name: "--clearance",
+            value: m.to_string(),
+            expected: "a finite distance of at least 0 metres".into(),
+        })
+    }
 }
 
 pub(crate) fn map_rows(map: &OccupancyGrid) -> Vec<(String, String)> {

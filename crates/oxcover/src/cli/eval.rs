@@ -7,7 +7,7 @@ use oxcover::path::read_csv;
 use oxcover::targets::evaluate_targets;
 use oxcover::{Error, Result};
 
-use super::args::{RobotArgs, TimeArgs, load, robot_of};
+use super::args::{RobotArgs, TimeArgs, admissible_robot, load};
 use super::targets::TargetArgs;
 
 #[derive(Debug, clap::Args)]
@@ -26,7 +26,7 @@ pub(crate) struct EvalArgs {
 
 pub(crate) fn cmd_eval(a: &EvalArgs) -> Result<()> {
     let map = load(&a.map, &a.robot.map)?;
-    let robot = robot_of(&a.robot, &map)?;
+    let robot = admissible_robot(&a.robot, &map)?;
     let time = a.time.model()?;
     let points = read_csv(&a.path)?;
     let targets = a.targets.targets()?;

@@ -8,11 +8,10 @@ use oxcover::grid::{OccupancyGrid, Point};
 use oxcover::pipeline::{Outputs, PlanRequest, coverage_notes, plan, planner, write_outputs};
 use oxcover::planners::{PlannerOptions, Start};
 use oxcover::report::table;
-use oxcover::targets::resume_start;
 
 use super::args::{
-    ANY, OnOff, Output, PNG, RobotArgs, SVG, TimeArgs, asked, check_outputs, load, note_later,
-    parse_start, robot_of,
+    ANY, OnOff, Output, PNG, RobotArgs, SVG, TimeArgs, asked, check_outputs, clearance_of, load,
+    note_later, parse_start, robot_of,
 };
 use super::targets::TargetArgs;
 
@@ -84,21 +83,35 @@ pub(crate) fn plan_outputs(a: &PlanArgs) -> Vec<Output<'_>> {
 
 /// The map and the plan request the `plan` options describe.
 pub(crate) fn map_and_request(a: &PlanArgs) -> Result<(OccupancyGrid, PlanRequest)> {
+    map_and_request_with(a, |_, _| 0.0)
+}
+
+/// [`map_and_request`] with the clearance `default` gives for the map
+/// (and the robot radius) when `--clearance` is not given.
+pub(crate) fn map_and_request_with(
+    a: &PlanArgs,
+    default: impl FnOnce(&OccupancyGrid, f64) -> f64,
+) -> Result<(OccupancyGrid, PlanRequest)> {
     let mut inputs = vec![a.map.as_path()];
     inputs.extend(a.targets.inputs());
     check_outputs(&inputs, &plan_outputs(a))?;
     let map = load(&a.map, &a.robot.map)?;
     let robot = robot_of(&a.robot, &map)?;
+    let clearance = match a.robot.clearance {
+        Some(_) => clearance_of(&a.robot, 0.0)?,
+        None => default(&map, robot.robot_radius),
+    };
     let time = a.time.model()?;
     let targets = a.targets.targets()?;
-    let start = match (a.start, &targets.done) {
-        (None, Some(done)) => {
-            let (work_map, _) = targets.blocked_map(&map)?;
-            let (p, note) = resume_start(&work_map, robot.robot_radius, done)?;
-            note_later(note);
-            Start::At(p)
-        }
-        (start, _) => Start::from(start),
+    let start = match a.start {
+        Some(p) => Start::At(p),
+        None => match targets.default_start(&map, robot.robot_radius + clearance)? {
+            Some((p, note)) => {
+                note_later(note);
+                Start::At(p)
+            }
+            None => Start::First,
+        },
     };
     let mut options = PlannerOptions::new();
     options.sweep_angle_deg = a.sweep_angle;
@@ -116,6 +129,7 @@ pub(crate) fn map_and_request(a: &PlanArgs) -> Result<(OccupancyGrid, PlanReques
             Some(size) => Some(oxcover::memory::parse_size(size)?),
         },
         targets,
+        clearance,
     };
     request.check_memory(&map, &a.map.display().to_string())?;
     Ok((map, request))
@@ -164,7 +178,15 @@ pub(crate) fn cmd_plan(a: &PlanArgs) -> Result<()> {
     } else {
         coverage_notes(&map, &outcome.evaluation.problem, default_start)
     };
-    for note in outcome.notes.iter().cloned().chain(notes) {
+    let lost = outcome.clearance_lost_cells.filter(|&n| n > 0).map(|n| {
+        let res = map.resolution();
+        format!(
+            "the clearance of {} m puts {n} coverable cells ({:.2} m2) out of the tool's reach; they are not counted",
+            request.clearance,
+            n as f64 * res * res
+        )
+    });
+    for note in outcome.notes.iter().cloned().chain(lost).chain(notes) {
         let _ = writeln!(std::io::stderr(), "note: {note}");
     }
     Ok(())

@@ -4,13 +4,15 @@ use std::io::Write as _;
 use std::path::PathBuf;
 
 use oxcover::Result;
-use oxcover::metrics::{MetricParams, evaluate};
+use oxcover::metrics::MetricParams;
 use oxcover::path::read_csv;
 use oxcover::pipeline::short_name;
-use oxcover::render::{Scene, render_to_file};
+use oxcover::render::{Overlay, Scene, render_to_file};
 use oxcover::report::metric_rows;
+use oxcover::targets::{evaluate_targets, target_overlay};
 
-use super::args::{PICTURE, RobotArgs, check_outputs, load, map_rows, robot_of};
+use super::args::{PICTURE, RobotArgs, admissible_robot, check_outputs, load, map_rows};
+use super::targets::TargetArgs;
 
 #[derive(Debug, clap::Args)]
 pub(crate) struct RenderArgs {
@@ -23,19 +25,25 @@ pub(crate) struct RenderArgs {
     pub(crate) out: PathBuf,
     #[command(flatten)]
     pub(crate) robot: RobotArgs,
+    #[command(flatten)]
+    pub(crate) targets: TargetArgs,
 }
 
 pub(crate) fn cmd_render(a: &RenderArgs) -> Result<()> {
     let mut inputs = vec![a.map.as_path()];
     inputs.extend(a.path.as_deref());
+    inputs.extend(a.targets.inputs());
     check_outputs(&inputs, &[("--out", &a.out, PICTURE)])?;
     let map = load(&a.map, &a.robot.map)?;
+    let targets = a.targets.targets()?;
+    let overlay = target_overlay(&targets);
+    let overlay = (overlay != Overlay::default()).then_some(&overlay);
     let name = short_name(&a.map.display().to_string());
     match &a.path {
         Some(path_file) => {
-            let robot = robot_of(&a.robot, &map)?;
+            let robot = admissible_robot(&a.robot, &map)?;
             let points = read_csv(path_file)?;
-            let ev = evaluate(&map, robot, &points, &MetricParams::default())?;
+            let ev = evaluate_targets(&map, robot, &points, &MetricParams::default(), &targets)?;
             let scene = Scene {
                 map: &map,
                 path: &points,
@@ -43,14 +51,15 @@ pub(crate) fn cmd_render(a: &RenderArgs) -> Result<()> {
                 covered: Some(&ev.covered),
                 coverable: Some(&ev.problem.coverable),
                 title: format!("{name} - {}", short_name(&path_file.display().to_string())),
-                overlay: None,
+                overlay,
                 regions: None,
                 rows: metric_rows(&ev.metrics),
             };
             render_to_file(&scene, &a.out)?;
         }
         None => {
-            let scene = Scene::map_only(&map, name, map_rows(&map));
+            let mut scene = Scene::map_only(&map, name, map_rows(&map));
+            scene.overlay = overlay;
             render_to_file(&scene, &a.out)?;
         }
     }

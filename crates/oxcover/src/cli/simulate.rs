@@ -10,7 +10,7 @@ use oxcover::render::{Scene, render_bytes};
 use oxcover::report::table;
 use oxcover::{Error, Result};
 
-use super::plan::{PlanArgs, map_and_request};
+use super::plan::{PlanArgs, map_and_request_with};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum ControllerArg {
@@ -47,7 +47,7 @@ pub(crate) struct SimulateArgs {
 }
 
 pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
-    use oxcover::closed_loop::{ClosedLoop, ControllerKind, execute, to_csv};
+    use oxcover::closed_loop::{ClosedLoop, ControllerKind, to_csv};
     let p = &a.plan;
     if let Some(spec) = &a.robot_spec {
         super::args::check_outputs(&[spec], &super::plan::plan_outputs(p))?;
@@ -72,7 +72,25 @@ pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
                 .map_or_else(|| "bundled".into(), |f| f.display().to_string()),
             expected: format!("a valid robot description ({e})"),
         })?;
-    let (map, request) = map_and_request(p)?;
+    // Planned with the robot's tracking margin as clearance unless
+    // `--clearance` says otherwise: kept from the edges of the path's
+    // cells (a path may run half a cell off its cells' centres), where
+    // the map's cells are fine enough for it: where it keeps at least half
+    // the cells the robot may stand in.
+    let (map, request) = map_and_request_with(p, |map, radius| {
+        let margin = spec.tracking_margin + map.resolution() / 2.0;
+        let stand = |r: f64| oxcover::grid::admissible(map, r).count_true();
+        if 2 * stand(radius + margin) >= stand(radius) {
+            margin
+        } else {
+            super::args::note_later(Some(format!(
+                "the map's cells ({} m) are too coarse for the tracking margin of {} m: planned without a clearance",
+                map.resolution(),
+                spec.tracking_margin
+            )));
+            0.0
+        }
+    })?;
     let robot = request.robot;
     let outcome = plan(&map, &request)?;
     let cfg = ClosedLoop {
@@ -86,7 +104,9 @@ pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
         odometry_noise: a.odometry_noise,
         seed: p.seed,
     };
-    let run = execute(&map, robot, &outcome.points, &cfg)?;
+    let run = oxcover::closed_loop::execute_plan(&map, &request, &outcome, &cfg)?;
+    let targets = &request.targets;
+    let overlay = oxcover::targets::target_overlay(targets);
     // Every output is made first and written as one set.
     let mut files: Vec<(std::path::PathBuf, Vec<u8>)> = Vec::new();
     if let Some(f) = &p.out {
@@ -111,7 +131,7 @@ pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
             short_name(&p.map.display().to_string()),
             p.planner
         ),
-        overlay: None,
+        overlay: (overlay != oxcover::render::Overlay::default()).then_some(&overlay),
         regions: None,
         rows: rows.clone(),
     };

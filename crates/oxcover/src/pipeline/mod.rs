@@ -75,6 +75,43 @@ pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
         || request.rooms.then(|| room_labels(&work_map)),
     );
     let problem = problem?;
+    let lost = clearance_lost(&work_map, &problem, request)?;
+    let mut outcome = plan_problem(map, problem, rooms, blocked_cells, request, t0)?;
+    outcome.clearance_lost_cells = lost;
+    Ok(outcome)
+}
+
+/// The coverable cells the clearance puts out of the tool's reach: those
+/// of the robot without it (from the same start cell) less the problem's.
+fn clearance_lost(
+    map: &OccupancyGrid,
+    problem: &CoverageProblem,
+    request: &PlanRequest,
+) -> Result<Option<usize>> {
+    if request.clearance <= 0.0 {
+        return Ok(None);
+    }
+    let plain = CoverageProblem::new(map, request.robot, Start::Cell(problem.start_cell()))?;
+    let (with, without) = (&problem.cells().coverable, &plain.cells().coverable);
+    let lost = without
+        .as_slice()
+        .iter()
+        .zip(with.as_slice())
+        .filter(|&(&a, &b)| a && !b)
+        .count();
+    Ok(Some(lost))
+}
+
+/// Plans `problem` (built on the map with keep-out applied) for `request`.
+fn plan_problem(
+    map: &OccupancyGrid,
+    problem: CoverageProblem,
+    rooms: Option<Rooms>,
+    blocked_cells: usize,
+    request: &PlanRequest,
+    t0: Instant,
+) -> Result<PlanOutcome> {
+    let targets = &request.targets;
     if let Some(target) = targets.required(map, problem.cells())? {
         let mut outcome = plan_target(problem, &target, rooms.as_ref(), request, t0)?;
         let res = map.resolution();
@@ -88,15 +125,7 @@ pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
         outcome.notes = target.notes;
         return Ok(outcome);
     }
-    // The plannable cells are one 4-connected region: all in one room,
-    // they are one unit, planned whole (no units to find).
-    let units = rooms
-        .filter(|rooms| in_several_rooms(problem.plannable(), &rooms.labels))
-        .map(|rooms| units_of(&problem, &rooms));
-    let mut outcome = match units.filter(|u| u.count() > 1) {
-        Some(units) => plan_rooms(&problem, &units, None, request, t0),
-        None => plan_whole(&problem, request, t0),
-    }?;
+    let mut outcome = plan_map(&problem, rooms.as_ref(), request, t0)?;
     if targets.keep_out.is_some() {
         outcome.targets = Some(TargetSummary {
             required_cells: outcome.evaluation.metrics.coverable_cells,
@@ -108,6 +137,25 @@ pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
         });
     }
     Ok(outcome)
+}
+
+/// Plans every plannable cell of `problem`: room by room over the plan's
+/// room units where there are several, else the whole at once.
+fn plan_map(
+    problem: &CoverageProblem,
+    rooms: Option<&Rooms>,
+    request: &PlanRequest,
+    t0: Instant,
+) -> Result<PlanOutcome> {
+    // The plannable cells are one 4-connected region: all in one room,
+    // they are one unit, planned whole (no units to find).
+    let units = rooms
+        .filter(|rooms| in_several_rooms(problem.plannable(), &rooms.labels))
+        .map(|rooms| units_of(problem, rooms));
+    match units.filter(|u| u.count() > 1) {
+        Some(units) => plan_rooms(problem, &units, None, request, t0),
+        None => plan_whole(problem, request, t0),
+    }
 }
 
 /// A start given in metres that keep-out areas cover is refused by name
@@ -134,9 +182,12 @@ fn keep_out_spares_start(
 }
 
 /// Plans a coverage target: the plannable cells within the tool's reach of
-/// a required cell, cut into units (by the chosen rooms, else by the
-/// plan's rooms when rooms are on) and planned unit by unit, the robot
-/// free to drive anywhere between them.
+/// the required cells ([`target_region`]), cut into units by the plan's
+/// rooms when rooms are on (else by the chosen rooms, else one unit per
+/// connected part) and planned unit by unit, the robot free to drive
+/// anywhere between them; a target of more than half the plannable cells
+/// is also planned as the whole map is (its required cells covered on the
+/// way), and the faster plan kept.
 fn plan_target(
     problem: CoverageProblem,
     target: &TargetCells,
@@ -145,19 +196,43 @@ fn plan_target(
     t0: Instant,
 ) -> Result<PlanOutcome> {
     let problem = problem.with_required(&target.required)?;
-    let near = coverable_cells(problem.plannable(), &target.required, problem.tool_cells());
-    let (w, h) = (near.width(), near.height());
-    let labels = match (&target.room_labels, rooms) {
-        (Some(chosen), _) => chosen.clone(),
-        (None, Some(rooms)) => rooms.labels.clone(),
+    let region = target_region(&problem, &target.required);
+    let (w, h) = (region.width(), region.height());
+    let labels = match (rooms, &target.room_labels) {
+        (Some(rooms), _) => rooms.labels.clone(),
+        (None, Some(chosen)) => chosen.clone(),
         (None, None) => Grid::new(w, h, 1),
     };
-    let units = RoomUnits::new(&near, &labels, min_unit_cells(&problem));
-    let order = match (&request.targets.rooms_only, request.targets.room_order) {
-        (Some(chosen), RoomOrder::Given) => Some(given_order(&units, &labels, chosen)),
+    let units = RoomUnits::new(&region, &labels, min_unit_cells(&problem));
+    let given = match (&request.targets.rooms_only, &target.room_labels) {
+        (Some(chosen), Some(room_labels)) if request.targets.room_order == RoomOrder::Given => {
+            Some(given_order(&units, room_labels, chosen))
+        }
         _ => None,
     };
-    plan_rooms(&problem, &units, order, request, t0)
+    let keep_order = given.is_some();
+    let by_units = plan_rooms(&problem, &units, given, request, t0)?;
+    // A target of most of the map: its units cost about the map's, and the
+    // map's own plan (covering the required cells on the way) may be the
+    // faster; the faster is kept (not when the room order is given).
+    if keep_order || 2 * region.count_true() <= problem.plannable().count_true() {
+        return Ok(by_units);
+    }
+    let by_map = plan_map(&problem, rooms, request, t0)?;
+    let time = |o: &PlanOutcome| o.evaluation.metrics.est_time_s;
+    let mut kept = if time(&by_map) < time(&by_units) {
+        by_map
+    } else {
+        by_units
+    };
+    kept.plan_ms = t0.elapsed().as_secs_f64() * 1e3;
+    Ok(kept)
+}
+
+/// Where a target is planned: the plannable cells within the tool's reach
+/// of its required cells.
+fn target_region(problem: &CoverageProblem, required: &Grid<bool>) -> Grid<bool> {
+    coverable_cells(problem.plannable(), required, problem.tool_cells())
 }
 
 /// The units in the order of the room labels `chosen`: each unit goes with

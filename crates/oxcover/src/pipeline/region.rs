@@ -298,6 +298,7 @@ pub(super) fn finish(
         plan_ms,
         targets: None,
         notes: Vec::new(),
+        clearance_lost_cells: None,
     })
 }
 

@@ -93,6 +93,10 @@ pub struct PlanRequest {
     /// What to cover and what never to enter (default: every coverable
     /// cell, nothing blocked).
     pub targets: Targets,
+    /// Metres the path keeps from non-free cells beyond the robot radius
+    /// (the contract's `--clearance`; default 0): admissible means at
+    /// least `robot_radius + clearance` from them.
+    pub clearance: f64,
 }
 
 impl std::fmt::Debug for PlanRequest {
@@ -108,6 +112,7 @@ impl std::fmt::Debug for PlanRequest {
             .field("time", &self.time)
             .field("memory_limit", &self.memory_limit)
             .field("targets", &self.targets)
+            .field("clearance", &self.clearance)
             .finish()
     }
 }
@@ -140,6 +145,7 @@ impl PlanRequest {
             time: TimeModel::default(),
             memory_limit: crate::memory::default_limit(),
             targets: Targets::default(),
+            clearance: 0.0,
         }
     }
 
@@ -215,6 +221,34 @@ impl PlanRequest {
         self
     }
 
+    /// The same request keeping `metres` more from walls than the robot
+    /// radius requires.
+    #[must_use]
+    pub fn clearance(mut self, metres: f64) -> Self {
+        self.clearance = metres;
+        self
+    }
+
+    /// The robot as planning sees it: the body radius grown by the
+    /// clearance.
+    ///
+    /// # Errors
+    /// A clearance that is negative or not finite.
+    pub fn planning_robot(&self) -> Result<DiscRobot> {
+        let m = self.clearance;
+        if !(m.is_finite() && m >= 0.0) {
+            return Err(Error::BadParameter {
+                name: "--clearance",
+                value: m.to_string(),
+                expected: "a finite distance of at least 0 metres".into(),
+            });
+        }
+        Ok(DiscRobot::new(
+            self.robot.robot_radius + m,
+            self.robot.tool_radius,
+        )?)
+    }
+
     /// The same request with coverage targets.
     #[must_use]
     pub fn targets(mut self, targets: Targets) -> Self {
@@ -229,12 +263,13 @@ impl PlanRequest {
         self
     }
 
-    /// The coverage problem this request poses on `map`.
+    /// The coverage problem this request poses on `map` (for the robot
+    /// grown by the clearance, [`Self::planning_robot`]).
     ///
     /// # Errors
-    /// Bad radii or start ([`oxcover_grid::Error`]).
+    /// Bad radii, clearance or start ([`oxcover_grid::Error`]).
     pub fn problem(&self, map: &OccupancyGrid) -> Result<CoverageProblem> {
-        Ok(CoverageProblem::new(map, self.robot, self.start)?.with_time(self.time))
+        Ok(CoverageProblem::new(map, self.planning_robot()?, self.start)?.with_time(self.time))
     }
 }
 
@@ -280,6 +315,9 @@ pub struct PlanOutcome {
     pub targets: Option<TargetSummary>,
     /// Notes on the targets for the user (a zone clipped to the map).
     pub notes: Vec<String>,
+    /// Cells coverable without the clearance that it puts out of the
+    /// tool's reach (`None` without a clearance).
+    pub clearance_lost_cells: Option<usize>,
 }
 
 impl PlanOutcome {
@@ -295,6 +333,9 @@ impl PlanOutcome {
                 format!("{:.4}", self.coverage_without_boundary_pass),
             ),
         );
+        if let Some(n) = self.clearance_lost_cells {
+            rows.push(("out of reach (clearance)".into(), n.to_string()));
+        }
         if let Some(t) = &self.targets {
             rows.extend([
                 ("required cells".into(), t.required_cells.to_string()),

@@ -288,6 +288,45 @@ pub fn room_labels(map: &OccupancyGrid) -> Result<Grid<u32>> {
     Ok(segment(map, &SegmentOptions::default())?.labels)
 }
 
+impl Targets {
+    /// Where a plan with these targets starts by default: with a done path,
+    /// where it stopped ([`resume_start`] on the map with keep-out applied,
+    /// for a robot of `radius` metres, clearance included); `None` without
+    /// one (the contract's default start).
+    ///
+    /// # Errors
+    /// As [`Targets::blocked_map`] and [`resume_start`].
+    pub fn default_start(
+        &self,
+        map: &OccupancyGrid,
+        radius: f64,
+    ) -> Result<Option<(Point, Option<String>)>> {
+        let Some(done) = &self.done else {
+            return Ok(None);
+        };
+        let (work, _) = self.blocked_map(map)?;
+        resume_start(&work, radius, done).map(Some)
+    }
+}
+
+impl Spot {
+    /// A spot, checked: a finite centre and a finite radius above 0.
+    ///
+    /// # Errors
+    /// [`Error::BadParameter`] naming `--spot`.
+    pub fn new(centre: Point, radius: f64) -> Result<Self> {
+        if centre.x.is_finite() && centre.y.is_finite() && radius.is_finite() && radius > 0.0 {
+            Ok(Self { centre, radius })
+        } else {
+            Err(Error::BadParameter {
+                name: "--spot",
+                value: format!("{},{},{}", centre.x, centre.y, radius),
+                expected: "a finite centre X,Y and a finite radius R above 0".into(),
+            })
+        }
+    }
+}
+
 /// Where a resumed plan starts: the done path's last point when the robot
 /// may stand there on `map` (keep-out applied) with `robot_radius`, else
 /// the nearest admissible cell centre, with a note saying how far it moved.
