@@ -95,6 +95,17 @@ pub fn parse_areas(text: &str, kinds: Kinds) -> std::result::Result<Areas, Strin
             }
         }
     }
+    let positions: usize = areas
+        .polygons
+        .iter()
+        .map(|p| p.exterior().0.len() + p.interiors().iter().map(|r| r.0.len()).sum::<usize>())
+        .chain(areas.lines.iter().map(|l| l.0.len()))
+        .sum();
+    if positions > MAX_FILE_POSITIONS {
+        return Err(format!(
+            "holds {positions} positions, at most {MAX_FILE_POSITIONS} are read (simplify it)"
+        ));
+    }
     if areas.polygons.is_empty() && areas.lines.is_empty() {
         return Err(format!("holds no geometry (expected {})", kinds.expected()));
     }
@@ -180,10 +191,23 @@ fn ring(positions: &[Position], what: &str) -> std::result::Result<LineString<f6
     Ok(LineString::new(coords))
 }
 
+/// Most positions of one polygon (its rings together): its validity check
+/// grows with their square (about a second at this size).
+pub const MAX_POLYGON_POSITIONS: usize = 10_000;
+
+/// Most positions of one file.
+pub const MAX_FILE_POSITIONS: usize = 100_000;
+
 fn polygon(rings: &[Vec<Position>], what: &str) -> std::result::Result<Polygon<f64>, String> {
     let Some((outer, holes)) = rings.split_first() else {
         return Err(format!("{what} has no ring"));
     };
+    let n: usize = rings.iter().map(Vec::len).sum();
+    if n > MAX_POLYGON_POSITIONS {
+        return Err(format!(
+            "{what} has {n} positions, at most {MAX_POLYGON_POSITIONS} per polygon are read (simplify it)"
+        ));
+    }
     let exterior = ring(outer, &format!("{what}, exterior ring"))?;
     let interiors = holes
         .iter()
@@ -208,12 +232,20 @@ fn polygon(rings: &[Vec<Position>], what: &str) -> std::result::Result<Polygon<f
     Ok(poly)
 }
 
+/// Most segments of a ring whose self-intersection is located.
+const LOCATE_MAX_SEGMENTS: usize = 4096;
+
 /// Where a ring crosses or touches itself: the first point two of its
 /// segments that are not neighbours share (or two neighbours overlapping
 /// along a line).
 fn self_crossing(ring: &LineString<f64>) -> Option<Coord<f64>> {
     let segs: Vec<Line<f64>> = ring.lines().collect();
     let n = segs.len();
+    // Pairs of segments are searched: a larger ring is named without the
+    // place (bounded work on bad input).
+    if n > LOCATE_MAX_SEGMENTS {
+        return None;
+    }
     for i in 0..n {
         for j in i + 1..n {
             let neighbours = j == i + 1 || (i == 0 && j == n - 1);

@@ -24,7 +24,9 @@ mod raster;
 #[cfg(test)]
 mod tests;
 
-pub use self::geojson::{Areas, Kinds, parse_areas, read_areas};
+pub use self::geojson::{
+    Areas, Kinds, MAX_FILE_POSITIONS, MAX_POLYGON_POSITIONS, parse_areas, read_areas,
+};
 pub use self::overlay::target_overlay;
 pub use self::raster::{Placement, disc_centres, line_squares, polygon_centres, polygon_squares};
 

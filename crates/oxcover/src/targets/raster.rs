@@ -7,7 +7,7 @@
 //! along rows from the image's top, cell `(r, c)` the square
 //! `[c, c+1] x [r, r+1]`), so a rotated map frame costs nothing more.
 
-use geo::{Coord, Intersects, LineString, MapCoords, Point as GeoPoint, Polygon, Rect};
+use geo::{Coord, LineString, MapCoords, Polygon};
 use oxcover_grid::{Cell, Grid, MapFrame, Point};
 
 /// `p` (metres, map frame) in grid coordinates.
@@ -90,38 +90,32 @@ fn for_range(range: (Cell, Cell), mut f: impl FnMut(Cell)) {
 }
 
 /// Marks in `mark` every cell whose square meets `polygon` (metres, map
-/// frame; boundary included).
+/// frame; boundary included): a closed square meets a closed polygon
+/// exactly when its centre lies inside or the polygon's boundary touches
+/// it, so the cells are those of [`polygon_centres`] and those every ring
+/// touches ([`line_squares`]).
 pub fn polygon_squares(
     frame: &MapFrame,
     polygon: &Polygon<f64>,
     mark: &mut Grid<bool>,
 ) -> Placement {
-    let g = polygon.map_coords(|p| grid_coord(frame, p));
-    let (lo, hi) = bbox(g.exterior().coords().copied());
-    let (range, clipped) = cell_range((mark.width(), mark.height()), lo, hi);
-    let mut cells = 0;
-    if let Some(range) = range {
-        for_range(range, |c| {
-            let (x, y) = (c.col as f64, c.row as f64);
-            let centre = GeoPoint::new(x + 0.5, y + 0.5);
-            let square = Rect::new(
-                Coord { x, y },
-                Coord {
-                    x: x + 1.0,
-                    y: y + 1.0,
-                },
-            );
-            if g.intersects(&centre) || g.intersects(&square) {
-                cells += usize::from(!mark[c]);
-                mark[c] = true;
-            }
-        });
+    let mut placed = polygon_centres(frame, polygon, mark);
+    for ring in std::iter::once(polygon.exterior()).chain(polygon.interiors()) {
+        placed += line_squares(frame, ring, mark);
     }
-    Placement { cells, clipped }
+    placed
 }
 
 /// Marks in `mark` every cell whose centre lies inside `polygon` (metres,
 /// map frame; on its boundary counts as inside, in a hole as outside).
+///
+/// A scanline per row of cell centres: each ring edge adds its crossing of
+/// the rows it spans (half-open in the row coordinate, so a vertex is
+/// counted once), the crossings sorted, and the centres between each pair
+/// marked (even-odd over all rings, holes included). Centres exactly on a
+/// horizontal edge or a vertex, which the half-open rule may miss, are
+/// marked too. The work is the edges' row crossings and the cells marked,
+/// whatever the polygon's size.
 pub fn polygon_centres(
     frame: &MapFrame,
     polygon: &Polygon<f64>,
@@ -129,18 +123,76 @@ pub fn polygon_centres(
 ) -> Placement {
     let g = polygon.map_coords(|p| grid_coord(frame, p));
     let (lo, hi) = bbox(g.exterior().coords().copied());
-    let (range, clipped) = cell_range((mark.width(), mark.height()), lo, hi);
-    let mut cells = 0;
-    if let Some(range) = range {
-        for_range(range, |c| {
-            let centre = GeoPoint::new(c.col as f64 + 0.5, c.row as f64 + 0.5);
-            if g.intersects(&centre) {
-                cells += usize::from(!mark[c]);
-                mark[c] = true;
+    let (w, h) = (mark.width(), mark.height());
+    let (range, clipped) = cell_range((w, h), lo, hi);
+    let mut placed = Placement { cells: 0, clipped };
+    let Some((first, last)) = range else {
+        return placed;
+    };
+    let rings: Vec<&LineString<f64>> = std::iter::once(g.exterior()).chain(g.interiors()).collect();
+    // Row r's centres lie at v = r + 0.5.
+    let rows = last.row - first.row + 1;
+    let mut crossings: Vec<Vec<f64>> = vec![Vec::new(); rows];
+    let mut set = |r: usize, c: usize, placed: &mut Placement| {
+        let cell = Cell::new(r, c);
+        placed.cells += usize::from(!mark[cell]);
+        mark[cell] = true;
+    };
+    let row_of = |v: f64| -> Option<usize> {
+        let r = v - 0.5;
+        (r.fract() == 0.0 && r >= first.row as f64 && r <= last.row as f64).then_some(r as usize)
+    };
+    let col_of = |u: f64| -> Option<usize> {
+        let c = u - 0.5;
+        (c.fract() == 0.0 && c >= first.col as f64 && c <= last.col as f64).then_some(c as usize)
+    };
+    for ring in &rings {
+        for l in ring.lines() {
+            let (a, b) = (l.start, l.end);
+            // A vertex exactly on a centre.
+            if let (Some(r), Some(c)) = (row_of(a.y), col_of(a.x)) {
+                set(r, c, &mut placed);
             }
-        });
+            if a.y == b.y {
+                // A horizontal edge exactly on a row of centres.
+                if let Some(r) = row_of(a.y) {
+                    let (x0, x1) = (a.x.min(b.x), a.x.max(b.x));
+                    let c0 = (x0 - 0.5).ceil().max(first.col as f64);
+                    let c1 = (x1 - 0.5).floor().min(last.col as f64);
+                    let mut c = c0;
+                    while c <= c1 {
+                        set(r, c as usize, &mut placed);
+                        c += 1.0;
+                    }
+                }
+                continue;
+            }
+            let (ylo, yhi) = (a.y.min(b.y), a.y.max(b.y));
+            // Rows whose centre v satisfies ylo <= v < yhi.
+            let r0 = ((ylo - 0.5).ceil()).max(first.row as f64);
+            let r1 = ((yhi - 0.5).ceil() - 1.0).min(last.row as f64);
+            let mut r = r0;
+            while r <= r1 {
+                let v = r + 0.5;
+                let x = a.x + (v - a.y) * (b.x - a.x) / (b.y - a.y);
+                crossings[r as usize - first.row].push(x);
+                r += 1.0;
+            }
+        }
     }
-    Placement { cells, clipped }
+    for (k, xs) in crossings.iter_mut().enumerate() {
+        xs.sort_by(f64::total_cmp);
+        for pair in xs.chunks_exact(2) {
+            let c0 = (pair[0] - 0.5).ceil().max(first.col as f64);
+            let c1 = (pair[1] - 0.5).floor().min(last.col as f64);
+            let mut c = c0;
+            while c <= c1 {
+                set(first.row + k, c as usize, &mut placed);
+                c += 1.0;
+            }
+        }
+    }
+    placed
 }
 
 /// Marks in `mark` every cell whose square `line` (metres, map frame)

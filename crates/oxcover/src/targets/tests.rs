@@ -239,3 +239,124 @@ fn a_spot_and_a_done_path_narrow_the_required_cells() {
     assert_eq!(start, Point::new(8.5, 3.5));
     assert!(note.unwrap().contains("1.000 m away"));
 }
+
+/// A star-shaped polygon with a hole, `n` points, round (cx, cy).
+fn star(n: usize, cx: f64, cy: f64, seed: u64) -> Polygon<f64> {
+    let mut x = seed;
+    let mut rnd = || {
+        x = x
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (x >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let ring = |r0: f64, r1: f64, rnd: &mut dyn FnMut() -> f64| {
+        let mut pts: Vec<(f64, f64)> = (0..n)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / n as f64;
+                let r = r0 + (r1 - r0) * rnd();
+                (cx + r * a.cos(), cy + r * a.sin())
+            })
+            .collect();
+        pts.push(pts[0]);
+        LineString::from(pts)
+    };
+    let outer = ring(3.0, 4.5, &mut rnd);
+    let hole = ring(0.8, 1.5, &mut rnd);
+    Polygon::new(outer, vec![hole])
+}
+
+/// The scanlines against `geo`'s own predicates, cell by cell, on rotated
+/// and plain frames.
+#[test]
+fn scanlines_agree_with_geo_cell_by_cell() {
+    use geo::{Intersects, MapCoords, Rect};
+    for (seed, yaw) in [(1, 0.0), (2, 0.3), (3, -1.1), (4, 0.0)] {
+        let f = MapFrame::new(24, 20, 0.5, Point::new(-1.0, -0.5)).with_yaw(yaw);
+        let p = star(9 + seed as usize, 5.0, 4.0, seed);
+        let (centres, _) = {
+            let mut g = Grid::new(24, 20, false);
+            let pl = polygon_centres(&f, &p, &mut g);
+            (g, pl)
+        };
+        let mut squares = Grid::new(24, 20, false);
+        polygon_squares(&f, &p, &mut squares);
+        // The polygon in grid coordinates, as the rasteriser sees it.
+        let g = p.map_coords(|c| {
+            let (row, col) = f.fractional_cell(&Point::new(c.x, c.y));
+            geo::Coord {
+                x: col + 0.5,
+                y: row + 0.5,
+            }
+        });
+        for c in centres.cells() {
+            let (x, y) = (c.col as f64, c.row as f64);
+            let centre = geo::Point::new(x + 0.5, y + 0.5);
+            assert_eq!(
+                centres[c],
+                g.intersects(&centre),
+                "seed {seed}: centre of {c:?}"
+            );
+            let square = Rect::new(
+                geo::Coord { x, y },
+                geo::Coord {
+                    x: x + 1.0,
+                    y: y + 1.0,
+                },
+            );
+            assert_eq!(
+                squares[c],
+                g.intersects(&square),
+                "seed {seed}: square of {c:?}"
+            );
+        }
+    }
+}
+
+/// A polygon of 200,000 points over a 2000 x 2000 map: linear work, not
+/// a test per cell against every edge.
+#[test]
+fn a_huge_polygon_is_rasterised_in_linear_time() {
+    let f = MapFrame::new(2000, 2000, 0.01, Point::origin());
+    let p = star(100_000, 10.0, 10.0, 7);
+    let t = std::time::Instant::now();
+    let mut g = Grid::new(2000, 2000, false);
+    let placed = polygon_squares(&f, &p, &mut g);
+    assert!(placed.cells > 300_000, "{}", placed.cells);
+    assert!(t.elapsed().as_secs_f64() < 20.0, "{:?}", t.elapsed());
+}
+
+/// Large files are read and checked in bounded time, valid or not.
+#[test]
+fn large_polygons_are_checked_quickly() {
+    let ring = |n: usize, bow: bool| {
+        let mut pts: Vec<String> = (0..n)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / n as f64;
+                let r = if bow && i == n / 2 {
+                    50.0
+                } else {
+                    10.0 + (i % 7) as f64 * 0.01
+                };
+                format!("[{},{}]", r * a.cos(), r * a.sin())
+            })
+            .collect();
+        if bow {
+            // The far point's return crosses the ring.
+            pts.insert(n / 2 + 1, "[-60,0.5]".into());
+        }
+        pts.push(pts[0].clone());
+        format!(
+            r#"{{"type":"Polygon","coordinates":[[{}]]}}"#,
+            pts.join(",")
+        )
+    };
+    for bow in [false, true] {
+        let text = ring(MAX_POLYGON_POSITIONS - 2, bow);
+        let t = std::time::Instant::now();
+        let r = parse_areas(&text, Kinds::Polygons);
+        assert_eq!(r.is_err(), bow, "{:?}", r.err());
+        assert!(t.elapsed().as_secs_f64() < 10.0, "{:?}", t.elapsed());
+    }
+    let e = parse_areas(&ring(MAX_POLYGON_POSITIONS + 1, false), Kinds::Polygons).unwrap_err();
+    assert!(e.contains("at most 10000 per polygon"), "{e}");
+}
