@@ -24,6 +24,13 @@ pub(crate) fn targets_argument(
         "given" => RoomOrder::Given,
         other => return Err(bad("room_order", other, "\"fastest\" or \"given\"")),
     };
+    if room_order == RoomOrder::Given && rooms_only.is_none() {
+        return Err(bad(
+            "room_order",
+            "given",
+            "rooms_only with the rooms in the order to cover them",
+        ));
+    }
     Ok(Targets {
         zones: zones
             .map(|p| read_areas(&p, "--zones", Kinds::Polygons))

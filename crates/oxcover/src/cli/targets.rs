@@ -54,6 +54,13 @@ impl TargetArgs {
 
     /// The targets the options describe, their files read.
     pub(crate) fn targets(&self) -> Result<Targets> {
+        if self.room_order == RoomOrderArg::Given && self.rooms_only.is_none() {
+            return Err(oxcover::Error::BadParameter {
+                name: "--room-order",
+                value: "given".into(),
+                expected: "--rooms-only with the rooms in the order to cover them".into(),
+            });
+        }
         Ok(Targets {
             zones: self
                 .zones

@@ -101,6 +101,10 @@ fn bad_targets_exit_2_with_one_line_and_write_nothing() {
             vec!["--keep-out", &over_start, "--start", "1,1"],
             "a keep-out area or virtual wall covers the start (1, 1)",
         ),
+        (
+            vec!["--room-order", "given"],
+            "--room-order is `given`, expected --rooms-only",
+        ),
         (vec!["--spot", "1,1"], "expected X,Y,R"),
         (vec!["--spot", "1,1,0"], "radius R above 0"),
         (
