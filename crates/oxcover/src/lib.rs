@@ -9,6 +9,8 @@
 //! - [`pipeline`]: the one plan pipeline (problem → plan → evaluate →
 //!   outputs) behind the command line, the demo, every experiment and bench;
 //!   the planner listing.
+//! - [`bag`]: plans as ROS 2 bags (`--bag OUT.mcap`): the path stamped by
+//!   the time model, rooms and targets as markers, odometry.
 //! - [`closed_loop`]: a plan executed by a simulated differential-drive robot
 //!   (time law, tracking controller, wheel limits, odometry noise, energy),
 //!   scored on the executed trajectory.
@@ -34,7 +36,7 @@
 //!
 //! Everything a user needs comes from this crate: the member crates are
 //! re-exported ([`grid`], [`planners`], [`distance`], [`decomp`], [`robot`],
-//! [`vision`], [`world`]) and the common names are at the root.
+//! [`vision`], [`world`], [`rosbag`]) and the common names are at the root.
 //!
 //! ```
 //! use oxcover::{parse_ascii, plan, PlanRequest};
@@ -51,6 +53,7 @@
 //! println!("{}", oxcover::path::to_csv(&outcome.points));
 //! ```
 
+pub mod bag;
 pub mod closed_loop;
 pub mod error;
 pub mod explore;
@@ -85,5 +88,7 @@ pub use oxcover_planners as planners;
 pub use oxcover_robot as robot;
 /// Camera occupancy mapping ([`oxcover_vision`]).
 pub use oxcover_vision as vision;
+/// ROS 2 bags: maps read from rosbag2, plans written as MCAP.
+pub use oxcover_rosbag as rosbag;
 /// Polygonal worlds, range sensing and the sensor-based planner ([`oxcover_world`]).
 pub use oxcover_world as world;

@@ -247,23 +247,10 @@ impl PathShape {
             .windows(2)
             .map(|w| (w[1] - w[0]).norm())
             .fold(0.0, |a, b| a + b);
-        let min_seg = resolution / 4.0;
-        let mut merged: Vec<Point> = Vec::with_capacity(points.len());
-        for p in points {
-            match merged.last() {
-                None => merged.push(*p),
-                Some(last) if (p - last).norm() >= min_seg => merged.push(*p),
-                Some(_) => {}
-            }
-        }
-        if let (Some(&end), Some(&last)) = (points.last(), merged.last()) {
-            let n = merged.len();
-            if n > 1 && last != end {
-                merged[n - 1] = end;
-            } else if n == 1 && (end - last).norm() > 0.0 {
-                merged.push(end);
-            }
-        }
+        let merged: Vec<Point> = merged_indices(points, resolution)
+            .into_iter()
+            .map(|i| points[i])
+            .collect();
         let mut turns = 0;
         let mut rotation_rad = 0.0;
         let headings: Vec<f64> = merged.windows(2).map(|w| heading(&(w[1] - w[0]))).collect();
@@ -280,6 +267,59 @@ impl PathShape {
             rotation_rad,
         }
     }
+}
+
+/// The waypoints the metrics keep (indices into `points`): each at least
+/// `resolution / 4` from the previous one kept, and the last waypoint always
+/// ending the merged polyline.
+fn merged_indices(points: &[Point], resolution: f64) -> Vec<usize> {
+    let min_seg = resolution / 4.0;
+    let mut kept: Vec<usize> = Vec::with_capacity(points.len());
+    for (i, p) in points.iter().enumerate() {
+        match kept.last() {
+            None => kept.push(i),
+            Some(&j) if (p - points[j]).norm() >= min_seg => kept.push(i),
+            Some(_) => {}
+        }
+    }
+    if let (Some(&end), Some(&last)) = (points.last(), kept.last()) {
+        let n = kept.len();
+        let end_index = points.len() - 1;
+        if n > 1 && points[last] != end {
+            kept[n - 1] = end_index;
+        } else if n == 1 && (end - points[last]).norm() > 0.0 {
+            kept.push(end_index);
+        }
+    }
+    kept
+}
+
+/// When the robot reaches each waypoint, in seconds from the first, by the
+/// time model of `est_time_s`: each segment driven at `v`, and each turn of
+/// the merged polyline (as `rotation_rad` counts it) taken at `w` on the
+/// spot before driving on. The last time is `est_time_s` (up to rounding).
+#[must_use]
+pub fn arrival_times(points: &[Point], resolution: f64, time: &TimeModel) -> Vec<f64> {
+    let kept = merged_indices(points, resolution);
+    // The turn made at each kept interior vertex, by its waypoint index.
+    let mut turn_at = vec![0.0; points.len()];
+    let headings: Vec<f64> = kept
+        .windows(2)
+        .map(|w| heading(&(points[w[1]] - points[w[0]])))
+        .collect();
+    for (k, h) in headings.windows(2).enumerate() {
+        turn_at[kept[k + 1]] += wrap_angle(h[1] - h[0]).abs();
+    }
+    let mut out = Vec::with_capacity(points.len());
+    let (mut length, mut rotation) = (0.0, 0.0);
+    for (i, p) in points.iter().enumerate() {
+        if i > 0 {
+            length += (p - points[i - 1]).norm();
+            rotation += turn_at[i - 1];
+        }
+        out.push(time.time(length, rotation));
+    }
+    out
 }
 
 #[cfg(test)]

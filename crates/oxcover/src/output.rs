@@ -174,6 +174,8 @@ pub const SVG: &[&str] = &["svg"];
 pub const PNG: &[&str] = &["png"];
 /// A picture in the format its name ends in.
 pub const PICTURE: &[&str] = &["svg", "png"];
+/// A ROS 2 bag in MCAP storage.
+pub const MCAP: &[&str] = &["mcap"];
 /// A ROS map (its image is written beside it).
 pub const YAML: &[&str] = &["yaml"];
 

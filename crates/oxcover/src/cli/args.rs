@@ -9,8 +9,9 @@ use oxcover::grid::{DiscRobot, OccupancyGrid, Point};
 use oxcover::planners::TimeModel;
 use oxcover::{Error, Result};
 
-pub(crate) use oxcover::output::{ANY, Output, PICTURE, PNG, SVG, YAML, asked, check_outputs};
+pub(crate) use oxcover::output::{ANY, MCAP, Output, PICTURE, PNG, SVG, YAML, asked, check_outputs};
 use oxcover::pipeline::{MapReading, load_map_with};
+use oxcover::rosbag::MessageChoice;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum OnOff {
@@ -57,6 +58,18 @@ pub(crate) struct MapArgs {
     /// (map_server's negate: 1).
     #[arg(long)]
     pub(crate) negate: bool,
+    /// For a rosbag2 bag: the nav_msgs/msg/OccupancyGrid topic to read
+    /// [default: the bag's only one].
+    #[arg(long, value_name = "NAME")]
+    pub(crate) topic: Option<String>,
+    /// For a rosbag2 bag: which message of the topic, `first`, `last` or
+    /// its number from 0 in log-time order [default: last].
+    #[arg(long, value_name = "last|first|N", value_parser = parse_message)]
+    pub(crate) message: Option<MessageChoice>,
+}
+
+fn parse_message(s: &str) -> std::result::Result<MessageChoice, String> {
+    s.parse()
 }
 
 impl MapArgs {
@@ -67,6 +80,8 @@ impl MapArgs {
             free_thresh: self.free_thresh,
             occupied_thresh: self.occupied_thresh,
             negate: self.negate,
+            topic: self.topic.clone(),
+            message: self.message,
         }
     }
 }

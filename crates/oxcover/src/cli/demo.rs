@@ -45,6 +45,7 @@ fn run_into(dir: &Path) -> Result<()> {
             svg: Some(&svg),
             png: Some(&png),
             report: Some(&json),
+            bag: None,
         },
     )?;
     let mut out = super::out::stdout();

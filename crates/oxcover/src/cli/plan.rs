@@ -10,14 +10,14 @@ use oxcover::planners::{PlannerOptions, Start};
 use oxcover::report::table;
 
 use super::args::{
-    ANY, OnOff, Output, PNG, RobotArgs, SVG, TimeArgs, asked, check_outputs, clearance_of, load,
+    ANY, MCAP, OnOff, Output, PNG, RobotArgs, SVG, TimeArgs, asked, check_outputs, clearance_of, load,
     note_later, parse_start, robot_of,
 };
 use super::targets::TargetArgs;
 
 #[derive(Debug, clap::Args)]
 pub(crate) struct PlanArgs {
-    /// Map file (.yaml, .pgm, .png, .bmp or .map).
+    /// Map: .yaml, .pgm, .png, .bmp, .map, or a rosbag2 bag (folder, .mcap, .db3).
     pub(crate) map: PathBuf,
     /// Planner name (see `oxcover planners`).
     #[arg(long, value_name = "NAME")]
@@ -64,6 +64,10 @@ pub(crate) struct PlanArgs {
     /// JSON report to write (metrics, planner, parameters, plan_ms).
     #[arg(long, value_name = "F.json")]
     pub(crate) report: Option<PathBuf>,
+    /// ROS 2 bag to write (MCAP: /map, /coverage_path stamped by the time
+    /// model, /rooms, /coverage_targets), for `ros2 bag play` and Foxglove.
+    #[arg(long, value_name = "F.mcap")]
+    pub(crate) bag: Option<PathBuf>,
     /// Refuse a map whose plan is estimated to need more memory than this
     /// (e.g. 8G, 512M; `none` for no limit) [default: 3/4 of the machine's
     /// memory].
@@ -78,6 +82,7 @@ pub(crate) fn plan_outputs(a: &PlanArgs) -> Vec<Output<'_>> {
         ("--svg", a.svg.as_deref(), SVG),
         ("--png", a.png.as_deref(), PNG),
         ("--report", a.report.as_deref(), ANY),
+        ("--bag", a.bag.as_deref(), MCAP),
     ])
 }
 
@@ -149,6 +154,7 @@ pub(crate) fn cmd_plan(a: &PlanArgs) -> Result<()> {
             svg: a.svg.as_deref(),
             png: a.png.as_deref(),
             report: a.report.as_deref(),
+            bag: a.bag.as_deref(),
         },
     )?;
     let mut out = super::out::stdout();

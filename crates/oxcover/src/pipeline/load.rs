@@ -5,6 +5,7 @@ use std::path::Path;
 
 use oxcover_grid::OccupancyGrid;
 use oxcover_grid::io::{MapFormat, ReadOptions, Thresholds, map_format, read_map};
+use oxcover_rosbag::MessageChoice;
 
 use crate::error::{Error, Result};
 
@@ -33,7 +34,7 @@ pub fn load_map(path: &Path, resolution: Option<f64>) -> Result<OccupancyGrid> {
 /// except where this says otherwise. A floor plan drawn to its own rule,
 /// say only white free (grey above 250, as the ipa floor-plan benchmark
 /// reads its plans), is read with `free_thresh: Some(5.0 / 255.0)`.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct MapReading {
     /// Metres per pixel [default 1.0].
     pub resolution: Option<f64>,
@@ -43,6 +44,10 @@ pub struct MapReading {
     pub occupied_thresh: Option<f64>,
     /// Dark means free: `p = v / 255` instead of `(255 - v) / 255`.
     pub negate: bool,
+    /// The OccupancyGrid topic of a bag [default: the bag's only one].
+    pub topic: Option<String>,
+    /// Which message of the topic [default: the last].
+    pub message: Option<MessageChoice>,
 }
 
 impl MapReading {
@@ -134,6 +139,24 @@ pub fn load_map_with(path: &Path, reading: &MapReading) -> Result<(OccupancyGrid
         options = options.resolution(r);
     }
     options = options.thresholds(reading.thresholds()?);
+    if oxcover_rosbag::is_bag(path) {
+        return load_bag(path, reading, &options);
+    }
+    let bag_option = match (&reading.topic, reading.message) {
+        (Some(t), _) => Some(("--topic", t.clone())),
+        (None, Some(m)) => Some(("--message", m.to_string())),
+        (None, None) => None,
+    };
+    if let Some((name, value)) = bag_option {
+        return Err(Error::BadParameter {
+            name,
+            value,
+            expected: format!(
+                "a rosbag2 bag (a folder with metadata.yaml, a .mcap or a .db3 file): {} is not one",
+                path.display()
+            ),
+        });
+    }
     let format = if reading.resolution.is_some() || reading.classifies() {
         Some(map_format(path)?)
     } else {
@@ -162,5 +185,44 @@ pub fn load_map_with(path: &Path, reading: &MapReading) -> Result<(OccupancyGrid
             map.resolution()
         ));
     }
+    Ok((map, notes))
+}
+
+/// Reads the OccupancyGrid of a bag: `--free-thresh` and
+/// `--occupied-thresh` classify its occupancy values; `--negate` is refused
+/// and `--resolution` noted, as for a yaml (the message places its cells).
+fn load_bag(
+    path: &Path,
+    reading: &MapReading,
+    options: &ReadOptions,
+) -> Result<(OccupancyGrid, Vec<String>)> {
+    if reading.negate {
+        return Err(Error::BadParameter {
+            name: "--negate",
+            value: "on".into(),
+            expected: format!(
+                "an image read without a yaml: {} is a rosbag2 bag, whose occupancy values 0..100 are never negated",
+                path.display()
+            ),
+        });
+    }
+    let map = oxcover_rosbag::read_map(
+        path,
+        reading.topic.as_deref(),
+        reading.message.unwrap_or_default(),
+        &options.thresholds,
+        options.max_cells,
+    )?;
+    let notes = reading
+        .resolution
+        .map(|r| {
+            format!(
+                "--resolution {r} is for images read without a yaml; {} is a rosbag2 bag, at {} m per cell",
+                path.display(),
+                map.resolution()
+            )
+        })
+        .into_iter()
+        .collect();
     Ok((map, notes))
 }

@@ -24,6 +24,8 @@ pub struct Outputs<'a> {
     pub png: Option<&'a Path>,
     /// JSON report.
     pub report: Option<&'a Path>,
+    /// ROS 2 bag (MCAP): map, stamped path, rooms, targets.
+    pub bag: Option<&'a Path>,
 }
 
 /// The picture of a plan of `request` on `map` (named `map_name`), as
@@ -81,6 +83,15 @@ pub fn write_outputs(
         let json = serde_json::to_string_pretty(&report)
             .map_err(|e| Error::Internal(format!("report serialisation failed: {e}")))?;
         files.push((p.to_path_buf(), (json + "\n").into_bytes()));
+    }
+    if let Some(p) = out.bag {
+        let extras = crate::bag::BagExtras {
+            rooms: Some(crate::bag::room_markers(map)?),
+            targets: crate::bag::target_markers(&request.targets, map.resolution()),
+            odom: Vec::new(),
+        };
+        let bytes = crate::bag::bag_bytes(map, &outcome.points, &request.time, extras, p)?;
+        files.push((p.to_path_buf(), bytes));
     }
     write_files(files)
 }

@@ -1,0 +1,350 @@
+//! rosbag2 bags as the contract names them: a folder with `metadata.yaml`
+//! (its `storage_identifier` and `relative_file_paths`), or one `.mcap`
+//! (storage `mcap`) or `.db3` (storage `sqlite3`) file; topics listed with
+//! their types and counts; one message picked by topic and position; the
+//! map read from its `nav_msgs/msg/OccupancyGrid` message.
+
+use std::path::{Path, PathBuf};
+use std::str::FromStr;
+
+use oxcover_grid::Error;
+use oxcover_grid::io::Thresholds;
+
+use crate::mcap_read::{self, McapFile};
+use crate::msgs::types;
+use crate::sqlite_read::{self, SqliteFile};
+
+/// One line naming `path` and what is wrong with it.
+pub(crate) fn bad(path: &Path, message: &str) -> Error {
+    Error::Format {
+        path: path.to_path_buf(),
+        message: message.to_string(),
+    }
+}
+
+/// The first `n` bytes of `path` (fewer if it is shorter); nothing more is read.
+pub(crate) fn head(path: &Path, n: usize) -> Result<Vec<u8>, Error> {
+    use std::io::Read as _;
+    let mut out = Vec::with_capacity(n);
+    std::fs::File::open(path)
+        .and_then(|f| f.take(n as u64).read_to_end(&mut out))
+        .map_err(|source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+    Ok(out)
+}
+
+/// A topic of a bag.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TopicInfo {
+    /// Topic name (`/map`).
+    pub name: String,
+    /// ROS 2 type (`nav_msgs/msg/OccupancyGrid`).
+    pub type_name: String,
+    /// Messages on it.
+    pub count: u64,
+}
+
+/// Which message of a topic to read.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum MessageChoice {
+    /// The earliest (by log time).
+    First,
+    /// The latest: the map as the mapping run left it [default].
+    #[default]
+    Last,
+    /// The message at this position, from 0, in log-time order.
+    Index(u64),
+}
+
+impl FromStr for MessageChoice {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "first" => Ok(Self::First),
+            "last" => Ok(Self::Last),
+            n => n.parse().map(Self::Index).map_err(|_| {
+                format!("`{s}`, expected first, last or a message number from 0")
+            }),
+        }
+    }
+}
+
+impl std::fmt::Display for MessageChoice {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::First => f.write_str("first"),
+            Self::Last => f.write_str("last"),
+            Self::Index(k) => write!(f, "{k}"),
+        }
+    }
+}
+
+/// How a file of a bag is stored.
+enum Storage {
+    Mcap(McapFile),
+    Sqlite(SqliteFile),
+}
+
+/// An open bag: its storage files in order.
+pub struct Bag {
+    path: PathBuf,
+    files: Vec<Storage>,
+}
+
+/// Whether `path` is a bag: a folder holding `metadata.yaml`, a file named
+/// `.mcap` or `.db3`, or a file beginning with MCAP's or SQLite's magic
+/// (only those bytes are read).
+#[must_use]
+pub fn is_bag(path: &Path) -> bool {
+    if path.is_dir() {
+        return path.join("metadata.yaml").is_file();
+    }
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .unwrap_or_default();
+    if matches!(ext.as_str(), "mcap" | "db3") {
+        return true;
+    }
+    head(path, 16).is_ok_and(|h| h.starts_with(mcap_read::MAGIC) || h.starts_with(sqlite_read::MAGIC))
+}
+
+impl Bag {
+    /// Opens the bag at `path`, checking each file's first bytes before
+    /// reading on.
+    ///
+    /// # Errors
+    /// One line naming the file: a folder without `metadata.yaml` or with
+    /// an unknown storage, a file that is neither MCAP nor SQLite, a
+    /// corrupted summary or database.
+    pub fn open(path: &Path) -> Result<Self, Error> {
+        let files = if path.is_dir() {
+            let (storage, names) = read_metadata(path)?;
+            names
+                .iter()
+                .map(|n| open_file(&path.join(n), Some(&storage)))
+                .collect::<Result<Vec<_>, _>>()?
+        } else {
+            vec![open_file(path, None)?]
+        };
+        Ok(Self {
+            path: path.to_path_buf(),
+            files,
+        })
+    }
+
+    /// Every topic, with its type and message count over all files, by name.
+    ///
+    /// # Errors
+    /// A storage file that cannot be read.
+    pub fn topics(&mut self) -> Result<Vec<TopicInfo>, Error> {
+        let mut all: Vec<TopicInfo> = Vec::new();
+        for file in &mut self.files {
+            let topics = match file {
+                Storage::Mcap(f) => f.topics()?,
+                Storage::Sqlite(f) => f.topics()?,
+            };
+            for t in topics {
+                match all.iter_mut().find(|a| a.name == t.name) {
+                    Some(a) => a.count += t.count,
+                    None => all.push(t),
+                }
+            }
+        }
+        all.sort_by(|a, b| a.name.cmp(&b.name));
+        Ok(all)
+    }
+
+    /// The serialized (CDR) data of the message `choice` picks on `topic`.
+    /// Files are taken in the metadata's order, as rosbag2 splits them.
+    ///
+    /// # Errors
+    /// An unknown topic (listing the bag's), a position past the topic's
+    /// last message, a storage file that cannot be read.
+    pub fn message(&mut self, topic: &str, choice: MessageChoice) -> Result<Vec<u8>, Error> {
+        let topics = self.topics()?;
+        let Some(info) = topics.iter().find(|t| t.name == topic) else {
+            return Err(bad(
+                &self.path,
+                &format!("no topic {topic}; the bag has {}", list(&topics)),
+            ));
+        };
+        let k = match choice {
+            MessageChoice::First => 0,
+            MessageChoice::Last => info.count.saturating_sub(1),
+            MessageChoice::Index(k) => k,
+        };
+        if k >= info.count {
+            return Err(bad(
+                &self.path,
+                &format!(
+                    "topic {topic} has {} messages, so no message {k} (numbered from 0)",
+                    info.count
+                ),
+            ));
+        }
+        let mut k = k;
+        for file in &mut self.files {
+            let count = match file {
+                Storage::Mcap(f) => f.topics()?,
+                Storage::Sqlite(f) => f.topics()?,
+            }
+            .iter()
+            .find(|t| t.name == topic)
+            .map_or(0, |t| t.count);
+            if k < count {
+                return match file {
+                    Storage::Mcap(f) => f.nth(topic, k),
+                    Storage::Sqlite(f) => f.nth(topic, k),
+                };
+            }
+            k -= count;
+        }
+        Err(bad(&self.path, &format!("topic {topic} has no message {k}")))
+    }
+
+    /// Bytes read from the bag's MCAP files so far (what an indexed read
+    /// spares shows here).
+    #[must_use]
+    pub fn mcap_bytes_read(&self) -> u64 {
+        self.files
+            .iter()
+            .map(|f| match f {
+                Storage::Mcap(m) => m.bytes_read,
+                Storage::Sqlite(_) => 0,
+            })
+            .sum()
+    }
+
+    /// The occupancy grid topic to read: `topic` where given (it must be
+    /// an OccupancyGrid), else the bag's only OccupancyGrid topic.
+    ///
+    /// # Errors
+    /// An unknown topic or one of another type, no OccupancyGrid topic, or
+    /// several and none chosen (each listing the bag's topics).
+    pub fn map_topic(&mut self, topic: Option<&str>) -> Result<String, Error> {
+        let topics = self.topics()?;
+        let is_grid = |t: &TopicInfo| {
+            t.type_name == types::OCCUPANCY_GRID || t.type_name == "nav_msgs/OccupancyGrid"
+        };
+        if let Some(name) = topic {
+            return match topics.iter().find(|t| t.name == name) {
+                Some(t) if is_grid(t) => Ok(t.name.clone()),
+                Some(t) => Err(bad(
+                    &self.path,
+                    &format!("topic {name} is {}, expected a {}", t.type_name, types::OCCUPANCY_GRID),
+                )),
+                None => Err(bad(&self.path, &format!("no topic {name}; the bag has {}", list(&topics)))),
+            };
+        }
+        let grids: Vec<&TopicInfo> = topics.iter().filter(|t| is_grid(t)).collect();
+        match grids.as_slice() {
+            [one] => Ok(one.name.clone()),
+            [] => Err(bad(
+                &self.path,
+                &format!("no {} topic; the bag has {}", types::OCCUPANCY_GRID, list(&topics)),
+            )),
+            many => Err(bad(
+                &self.path,
+                &format!(
+                    "{} {} topics ({}); pick one with --topic",
+                    many.len(),
+                    types::OCCUPANCY_GRID,
+                    many.iter().map(|t| t.name.as_str()).collect::<Vec<_>>().join(", ")
+                ),
+            )),
+        }
+    }
+}
+
+/// The bag's topics for a message: "/a (type, n messages), ...".
+fn list(topics: &[TopicInfo]) -> String {
+    if topics.is_empty() {
+        return "no topics".into();
+    }
+    topics
+        .iter()
+        .map(|t| format!("{} ({}, {} messages)", t.name, t.type_name, t.count))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn open_file(path: &Path, storage: Option<&str>) -> Result<Storage, Error> {
+    let h = head(path, 16)?;
+    let storage = storage.map(str::to_string).unwrap_or_else(|| {
+        if h.starts_with(sqlite_read::MAGIC)
+            || path.extension().is_some_and(|e| e.eq_ignore_ascii_case("db3")) && !h.starts_with(mcap_read::MAGIC)
+        {
+            "sqlite3".into()
+        } else {
+            "mcap".into()
+        }
+    });
+    match storage.as_str() {
+        "mcap" => McapFile::open(path).map(Storage::Mcap),
+        "sqlite3" => SqliteFile::open(path).map(Storage::Sqlite),
+        other => Err(bad(path, &format!("storage `{other}`, expected mcap or sqlite3"))),
+    }
+}
+
+/// A bag folder's storage identifier and file names, from `metadata.yaml`.
+fn read_metadata(dir: &Path) -> Result<(String, Vec<String>), Error> {
+    let path = dir.join("metadata.yaml");
+    if !path.is_file() {
+        return Err(bad(dir, "a folder without metadata.yaml, expected a rosbag2 bag folder"));
+    }
+    let text = oxcover_grid::io::limited::read_limited_string(&path, oxcover_grid::io::limited::MAX_YAML_BYTES)
+        .map_err(|source| Error::Io {
+            path: path.clone(),
+            source,
+        })?;
+    let docs = yaml_rust2::YamlLoader::load_from_str(&text)
+        .map_err(|e| bad(&path, &format!("not YAML: {e}")))?;
+    let info = docs
+        .first()
+        .map(|d| &d["rosbag2_bagfile_information"])
+        .filter(|i| !i.is_badvalue())
+        .ok_or_else(|| bad(&path, "no `rosbag2_bagfile_information`, expected rosbag2 metadata"))?;
+    let storage = info["storage_identifier"]
+        .as_str()
+        .ok_or_else(|| bad(&path, "no `storage_identifier` (mcap or sqlite3)"))?
+        .to_string();
+    let names: Vec<String> = info["relative_file_paths"]
+        .as_vec()
+        .map(|v| v.iter().filter_map(|n| n.as_str().map(str::to_string)).collect())
+        .unwrap_or_default();
+    if names.is_empty() {
+        return Err(bad(&path, "no `relative_file_paths`, expected the bag's storage files"));
+    }
+    if let Some(n) = names.iter().find(|n| Path::new(n).is_absolute() || n.contains("..")) {
+        return Err(bad(&path, &format!("file `{n}` is not inside the bag folder")));
+    }
+    Ok((storage, names))
+}
+
+/// Reads the map of a bag: the OccupancyGrid message `choice` picks on
+/// `topic` (default: the bag's only OccupancyGrid topic), classified with
+/// `thresholds`' occupancy thresholds, at most `max_cells` cells.
+///
+/// # Errors
+/// As [`Bag::open`], [`Bag::map_topic`] and [`Bag::message`]; a message
+/// that does not decode as an OccupancyGrid; the grid checks of
+/// [`crate::grid::from_msg`].
+pub fn read_map(
+    path: &Path,
+    topic: Option<&str>,
+    choice: MessageChoice,
+    thresholds: &Thresholds,
+    max_cells: usize,
+) -> Result<oxcover_grid::OccupancyGrid, Error> {
+    let mut bag = Bag::open(path)?;
+    let topic = bag.map_topic(topic)?;
+    let data = bag.message(&topic, choice)?;
+    let msg: crate::msgs::OccupancyGrid = crate::cdr::decode(&data)
+        .map_err(|e| bad(path, &format!("{topic}: not a nav_msgs/msg/OccupancyGrid: {e}")))?;
+    crate::grid::from_msg(path, &msg, thresholds, max_cells)
+}

@@ -1,0 +1,205 @@
+//! Plans as ROS 2 bags (`--bag OUT.mcap`): the map, the path stamped by the
+//! time model of `est_time_s`, the rooms of `oxcover segment` and the
+//! coverage targets as markers, and an executed trajectory as odometry,
+//! written by [`oxcover_rosbag::write_mcap`].
+
+use std::path::Path;
+
+use oxcover_grid::{Cell, Grid, OccupancyGrid, Point};
+use oxcover_planners::TimeModel;
+use oxcover_rosbag::msgs::MarkerArray;
+use oxcover_rosbag::{OdomSample, PlanBag, StampedPose, markers};
+
+use crate::error::{Error, Result};
+use crate::metrics::arrival_times;
+use crate::rooms::{SegmentOptions, segment};
+use crate::targets::Targets;
+
+/// The poses of `points`, each oriented along the path (towards the next
+/// waypoint that is elsewhere; the last along the way it came) and stamped
+/// with [`arrival_times`].
+#[must_use]
+pub fn path_poses(points: &[Point], resolution: f64, time: &TimeModel) -> Vec<StampedPose> {
+    let times = arrival_times(points, resolution, time);
+    let mut yaw = 0.0;
+    let mut out = Vec::with_capacity(points.len());
+    // Headings looked up from the end, so each pose knows its next move.
+    let mut next_yaw = vec![None; points.len()];
+    let mut ahead: Option<f64> = None;
+    for i in (0..points.len()).rev() {
+        next_yaw[i] = ahead;
+        if i > 0 {
+            let d = points[i] - points[i - 1];
+            if d.norm() > 0.0 {
+                ahead = Some(d.y.atan2(d.x));
+            }
+        }
+    }
+    for (i, p) in points.iter().enumerate() {
+        if let Some(y) = next_yaw[i] {
+            yaw = y;
+        }
+        out.push(StampedPose {
+            x: p.x,
+            y: p.y,
+            yaw,
+            t: times[i],
+        });
+    }
+    out
+}
+
+/// The rooms `oxcover segment` gives `map` by default, as outlines and
+/// labels (each label at the room's cell nearest its centroid).
+///
+/// # Errors
+/// As [`segment`] (not expected with the defaults).
+pub fn room_markers(map: &OccupancyGrid) -> Result<MarkerArray> {
+    let rooms = segment(map, &SegmentOptions::default())?;
+    let labels: &Grid<u32> = &rooms.labels;
+    let frame = map.frame();
+    let n = rooms.count();
+    let mut sums = vec![(0.0, 0.0, 0usize); n + 1];
+    for c in labels.cells() {
+        let l = labels[c] as usize;
+        if l > 0 {
+            let p = frame.cell_center(c);
+            sums[l].0 += p.x;
+            sums[l].1 += p.y;
+            sums[l].2 += 1;
+        }
+    }
+    let mut best: Vec<Option<(f64, Cell)>> = vec![None; n + 1];
+    for c in labels.cells() {
+        let l = labels[c] as usize;
+        if l > 0 {
+            let (sx, sy, k) = sums[l];
+            let centroid = Point::new(sx / k as f64, sy / k as f64);
+            let d = (frame.cell_center(c) - centroid).norm();
+            if best[l].is_none_or(|(b, _)| d < b) {
+                best[l] = Some((d, c));
+            }
+        }
+    }
+    let anchors: Vec<(u32, (f64, f64))> = best
+        .iter()
+        .enumerate()
+        .filter_map(|(l, b)| {
+            b.map(|(_, c)| {
+                let p = frame.cell_center(c);
+                (l as u32, (p.x, p.y))
+            })
+        })
+        .collect();
+    Ok(markers::rooms(labels, frame, &anchors))
+}
+
+/// Zones (green outlines, namespace `zones`), keep-out areas (red,
+/// `keep_out`) and virtual walls (red and thicker, `virtual_walls`);
+/// `None` where `targets` has none of them.
+#[must_use]
+pub fn target_markers(targets: &Targets, resolution: f64) -> Option<MarkerArray> {
+    const ZONE: [u8; 3] = [44, 160, 44];
+    const KEEP_OUT: [u8; 3] = [214, 39, 40];
+    let mut out = Vec::new();
+    let ring = |r: &geo::LineString<f64>| -> Vec<(f64, f64)> { r.coords().map(|c| (c.x, c.y)).collect() };
+    let width = resolution;
+    if let Some(z) = &targets.zones {
+        for p in &z.polygons {
+            for r in std::iter::once(p.exterior()).chain(p.interiors()) {
+                out.push(markers::polyline("zones", out.len() as i32, &ring(r), width, ZONE));
+            }
+        }
+    }
+    if let Some(s) = targets.spot {
+        let n = 48;
+        let circle: Vec<(f64, f64)> = (0..=n)
+            .map(|i| {
+                let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+                (s.centre.x + s.radius * a.cos(), s.centre.y + s.radius * a.sin())
+            })
+            .collect();
+        out.push(markers::polyline("zones", out.len() as i32, &circle, width, ZONE));
+    }
+    if let Some(k) = &targets.keep_out {
+        for p in &k.polygons {
+            for r in std::iter::once(p.exterior()).chain(p.interiors()) {
+                out.push(markers::polyline("keep_out", out.len() as i32, &ring(r), width, KEEP_OUT));
+            }
+        }
+        for l in &k.lines {
+            out.push(markers::polyline("virtual_walls", out.len() as i32, &ring(l), 2.0 * width, KEEP_OUT));
+        }
+    }
+    (!out.is_empty()).then_some(MarkerArray { markers: out })
+}
+
+/// What a bag of a plan holds besides the map and the path.
+#[derive(Clone, Debug, Default)]
+pub struct BagExtras {
+    /// Rooms to draw.
+    pub rooms: Option<MarkerArray>,
+    /// Targets to draw.
+    pub targets: Option<MarkerArray>,
+    /// An executed trajectory.
+    pub odom: Vec<OdomSample>,
+}
+
+/// The MCAP bytes of a bag holding `map`, the path `points` stamped by
+/// `time`, and `extras`, to be written as `out`.
+///
+/// # Errors
+/// [`Error::Internal`] where the encoder refuses a message (not expected).
+pub fn bag_bytes(
+    map: &OccupancyGrid,
+    points: &[Point],
+    time: &TimeModel,
+    extras: BagExtras,
+    out: &Path,
+) -> Result<Vec<u8>> {
+    let name = out.file_name().map_or_else(|| "plan.mcap".into(), |n| n.to_string_lossy().into_owned());
+    let bag = PlanBag {
+        map,
+        path: path_poses(points, map.resolution(), time),
+        rooms: extras.rooms,
+        targets: extras.targets,
+        odom: extras.odom,
+    };
+    oxcover_rosbag::write_mcap(&bag, &name).map_err(Error::Internal)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::metrics::PathShape;
+
+    #[test]
+    fn stamps_end_at_the_estimated_time_and_never_decrease() {
+        // Short jogs (merged by the metrics), a U-turn and a repeated point.
+        let pts: Vec<Point> = [
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (1.0, 0.01),
+            (2.0, 0.0),
+            (2.0, 0.0),
+            (2.0, 1.0),
+            (0.0, 1.0),
+            (0.5, 1.0),
+        ]
+        .iter()
+        .map(|&(x, y)| Point::new(x, y))
+        .collect();
+        let time = TimeModel::default();
+        let poses = path_poses(&pts, 0.1, &time);
+        let shape = PathShape::of(&pts, 0.1);
+        let est = time.time(shape.length_m, shape.rotation_rad);
+        assert!((poses.last().expect("poses").t - est).abs() < 1e-9 * est);
+        assert!(poses.windows(2).all(|w| w[1].t >= w[0].t));
+        assert_eq!(poses[0].t, 0.0);
+        // Oriented along the next move; the repeated point keeps the heading
+        // of its next move (north), the last pose the way it came (east).
+        assert!((poses[0].yaw).abs() < 1e-12);
+        assert!((poses[4].yaw - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+        assert!((poses[7].yaw).abs() < 1e-12);
+    }
+}
