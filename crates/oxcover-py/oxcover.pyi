@@ -97,8 +97,10 @@ class Plan:
         svg: Optional[PathLike] = None,
         png: Optional[PathLike] = None,
         report: Optional[PathLike] = None,
+        bag: Optional[PathLike] = None,
     ) -> list[pathlib.Path]:
-        """Writes the files all or none; returns the paths written."""
+        """Writes the files all or none; returns the paths written. `bag` is
+        a ROS 2 bag (MCAP): /map, /coverage_path, /rooms, /coverage_targets."""
     def __len__(self) -> int: ...
 
 def load_map(
@@ -108,11 +110,15 @@ def load_map(
     free_thresh: Optional[float] = None,
     occupied_thresh: Optional[float] = None,
     negate: bool = False,
+    topic: Optional[str] = None,
+    message: Union[int, str, None] = None,
 ) -> Map:
-    """Reads a ROS yaml (+ PGM/PNG/BMP), a PGM/PNG/BMP image or a MovingAI
-    .map; `resolution` places an image read without a yaml, and
-    `free_thresh`, `occupied_thresh` and `negate` (map_server's fields)
-    classify its pixels."""
+    """Reads a ROS yaml (+ PGM/PNG/BMP), a PGM/PNG/BMP image, a MovingAI
+    .map, or a rosbag2 bag (folder, .mcap or .db3: the OccupancyGrid message
+    `topic` and `message` ("last", "first" or a number from 0) pick);
+    `resolution` places an image read without a yaml, and `free_thresh`,
+    `occupied_thresh` and `negate` (map_server's fields) classify its
+    pixels."""
 
 def planners() -> list[PlannerInfo]: ...
 def plan(

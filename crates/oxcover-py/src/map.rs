@@ -6,6 +6,7 @@
 //! `nav_msgs/OccupancyGrid` (`np.asarray(msg.data).reshape(h, w)`);
 //! `rows="down"` takes row 0 as the top row, as an image is stored.
 
+use oxcover::rosbag::MessageChoice;
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -392,9 +393,22 @@ impl Map {
     }
 }
 
+/// `message=`: a number or a name.
+#[derive(FromPyObject)]
+pub(crate) enum MessageArg {
+    /// A message number from 0.
+    Index(u64),
+    /// `first` or `last`.
+    Name(String),
+}
+
 /// Reads a map in any format the command line reads: a ROS map_server yaml
 /// (with its PGM/PNG/BMP image), a plain PGM, PNG or BMP image, or a
-/// MovingAI `.map`. An image read without a yaml is placed by `resolution`
+/// MovingAI `.map`, or a rosbag2 bag (a folder with `metadata.yaml`, a
+/// `.mcap` or a `.db3` file) whose `nav_msgs/msg/OccupancyGrid` message is
+/// picked by `topic` (default: the bag's only OccupancyGrid topic) and
+/// `message` (`"last"` (default), `"first"`, or its number from 0 in
+/// log-time order), as `--topic` and `--message`. An image read without a yaml is placed by `resolution`
 /// (metres per cell, default 1.0) and classified by `free_thresh`,
 /// `occupied_thresh` and `negate` (map_server's fields, defaults 0.196,
 /// 0.65 and False), as the command line's `--resolution`, `--free-thresh`,
@@ -405,7 +419,8 @@ impl Map {
 /// command line's message naming the file and what is wrong. A resolution
 /// the map does not use (a yaml's own stands) is a UserWarning.
 #[pyfunction]
-#[pyo3(signature = (path, *, resolution = None, free_thresh = None, occupied_thresh = None, negate = false))]
+#[pyo3(signature = (path, *, resolution = None, free_thresh = None, occupied_thresh = None, negate = false, topic = None, message = None))]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn load_map(
     py: Python<'_>,
     path: PathBuf,
@@ -413,13 +428,24 @@ pub(crate) fn load_map(
     free_thresh: Option<f64>,
     occupied_thresh: Option<f64>,
     negate: bool,
+    topic: Option<String>,
+    message: Option<MessageArg>,
 ) -> PyResult<Map> {
     let name = path.display().to_string();
+    let message = match message {
+        None => None,
+        Some(MessageArg::Index(k)) => Some(MessageChoice::Index(k)),
+        Some(MessageArg::Name(s)) => Some(s.parse().map_err(|e: String| {
+            pyo3::exceptions::PyValueError::new_err(format!("message is {e}"))
+        })?),
+    };
     let reading = oxcover::pipeline::MapReading {
         resolution,
         free_thresh,
         occupied_thresh,
         negate,
+        topic,
+        message,
     };
     let (grid, notes) = detached(py, move || {
         oxcover::pipeline::load_map_with(&path, &reading)

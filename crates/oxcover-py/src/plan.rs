@@ -176,9 +176,10 @@ impl Plan {
     /// Writes the path CSV, pictures and JSON report, as `oxcover plan
     /// --out/--svg/--png/--report` do: every path checked first (folder
     /// exists and is writable, name ends as the format needs, no file twice,
-    /// not the map), then all files written whole or none. Returns the paths
-    /// written.
-    #[pyo3(signature = (*, out = None, svg = None, png = None, report = None))]
+    /// not the map), then all files written whole or none. `bag` writes a
+    /// ROS 2 bag (MCAP) as `--bag` does: /map, /coverage_path stamped by the
+    /// time model, /rooms and /coverage_targets. Returns the paths written.
+    #[pyo3(signature = (*, out = None, svg = None, png = None, report = None, bag = None))]
     fn write(
         &self,
         py: Python<'_>,
@@ -186,14 +187,16 @@ impl Plan {
         svg: Option<PathBuf>,
         png: Option<PathBuf>,
         report: Option<PathBuf>,
+        bag: Option<PathBuf>,
     ) -> PyResult<Vec<PathBuf>> {
-        use oxcover::output::{ANY, PNG, SVG, asked, check_outputs};
+        use oxcover::output::{ANY, MCAP, PNG, SVG, asked, check_outputs};
         detached(py, || {
             let outputs = asked([
                 ("--out", out.as_deref(), ANY),
                 ("--svg", svg.as_deref(), SVG),
                 ("--png", png.as_deref(), PNG),
                 ("--report", report.as_deref(), ANY),
+                ("--bag", bag.as_deref(), MCAP),
             ]);
             let map_file = Path::new(&self.map_name);
             let inputs: Vec<&Path> = if map_file.is_file() {
@@ -212,6 +215,7 @@ impl Plan {
                     svg: svg.as_deref(),
                     png: png.as_deref(),
                     report: report.as_deref(),
+                    bag: bag.as_deref(),
                 },
             )
         })

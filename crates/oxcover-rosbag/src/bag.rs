@@ -65,9 +65,10 @@ impl FromStr for MessageChoice {
         match s {
             "first" => Ok(Self::First),
             "last" => Ok(Self::Last),
-            n => n.parse().map(Self::Index).map_err(|_| {
-                format!("`{s}`, expected first, last or a message number from 0")
-            }),
+            n => n
+                .parse()
+                .map(Self::Index)
+                .map_err(|_| format!("`{s}`, expected first, last or a message number from 0")),
         }
     }
 }
@@ -110,7 +111,8 @@ pub fn is_bag(path: &Path) -> bool {
     if matches!(ext.as_str(), "mcap" | "db3") {
         return true;
     }
-    head(path, 16).is_ok_and(|h| h.starts_with(mcap_read::MAGIC) || h.starts_with(sqlite_read::MAGIC))
+    head(path, 16)
+        .is_ok_and(|h| h.starts_with(mcap_read::MAGIC) || h.starts_with(sqlite_read::MAGIC))
 }
 
 impl Bag {
@@ -204,7 +206,10 @@ impl Bag {
             }
             k -= count;
         }
-        Err(bad(&self.path, &format!("topic {topic} has no message {k}")))
+        Err(bad(
+            &self.path,
+            &format!("topic {topic} has no message {k}"),
+        ))
     }
 
     /// Bytes read from the bag's MCAP files so far (what an indexed read
@@ -236,9 +241,16 @@ impl Bag {
                 Some(t) if is_grid(t) => Ok(t.name.clone()),
                 Some(t) => Err(bad(
                     &self.path,
-                    &format!("topic {name} is {}, expected a {}", t.type_name, types::OCCUPANCY_GRID),
+                    &format!(
+                        "topic {name} is {}, expected a {}",
+                        t.type_name,
+                        types::OCCUPANCY_GRID
+                    ),
                 )),
-                None => Err(bad(&self.path, &format!("no topic {name}; the bag has {}", list(&topics)))),
+                None => Err(bad(
+                    &self.path,
+                    &format!("no topic {name}; the bag has {}", list(&topics)),
+                )),
             };
         }
         let grids: Vec<&TopicInfo> = topics.iter().filter(|t| is_grid(t)).collect();
@@ -246,7 +258,11 @@ impl Bag {
             [one] => Ok(one.name.clone()),
             [] => Err(bad(
                 &self.path,
-                &format!("no {} topic; the bag has {}", types::OCCUPANCY_GRID, list(&topics)),
+                &format!(
+                    "no {} topic; the bag has {}",
+                    types::OCCUPANCY_GRID,
+                    list(&topics)
+                ),
             )),
             many => Err(bad(
                 &self.path,
@@ -254,7 +270,10 @@ impl Bag {
                     "{} {} topics ({}); pick one with --topic",
                     many.len(),
                     types::OCCUPANCY_GRID,
-                    many.iter().map(|t| t.name.as_str()).collect::<Vec<_>>().join(", ")
+                    many.iter()
+                        .map(|t| t.name.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
                 ),
             )),
         }
@@ -277,7 +296,10 @@ fn open_file(path: &Path, storage: Option<&str>) -> Result<Storage, Error> {
     let h = head(path, 16)?;
     let storage = storage.map(str::to_string).unwrap_or_else(|| {
         if h.starts_with(sqlite_read::MAGIC)
-            || path.extension().is_some_and(|e| e.eq_ignore_ascii_case("db3")) && !h.starts_with(mcap_read::MAGIC)
+            || path
+                .extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case("db3"))
+                && !h.starts_with(mcap_read::MAGIC)
         {
             "sqlite3".into()
         } else {
@@ -287,7 +309,10 @@ fn open_file(path: &Path, storage: Option<&str>) -> Result<Storage, Error> {
     match storage.as_str() {
         "mcap" => McapFile::open(path).map(Storage::Mcap),
         "sqlite3" => SqliteFile::open(path).map(Storage::Sqlite),
-        other => Err(bad(path, &format!("storage `{other}`, expected mcap or sqlite3"))),
+        other => Err(bad(
+            path,
+            &format!("storage `{other}`, expected mcap or sqlite3"),
+        )),
     }
 }
 
@@ -295,33 +320,57 @@ fn open_file(path: &Path, storage: Option<&str>) -> Result<Storage, Error> {
 fn read_metadata(dir: &Path) -> Result<(String, Vec<String>), Error> {
     let path = dir.join("metadata.yaml");
     if !path.is_file() {
-        return Err(bad(dir, "a folder without metadata.yaml, expected a rosbag2 bag folder"));
+        return Err(bad(
+            dir,
+            "a folder without metadata.yaml, expected a rosbag2 bag folder",
+        ));
     }
-    let text = oxcover_grid::io::limited::read_limited_string(&path, oxcover_grid::io::limited::MAX_YAML_BYTES)
-        .map_err(|source| Error::Io {
-            path: path.clone(),
-            source,
-        })?;
+    let text = oxcover_grid::io::limited::read_limited_string(
+        &path,
+        oxcover_grid::io::limited::MAX_YAML_BYTES,
+    )
+    .map_err(|source| Error::Io {
+        path: path.clone(),
+        source,
+    })?;
     let docs = yaml_rust2::YamlLoader::load_from_str(&text)
         .map_err(|e| bad(&path, &format!("not YAML: {e}")))?;
     let info = docs
         .first()
         .map(|d| &d["rosbag2_bagfile_information"])
         .filter(|i| !i.is_badvalue())
-        .ok_or_else(|| bad(&path, "no `rosbag2_bagfile_information`, expected rosbag2 metadata"))?;
+        .ok_or_else(|| {
+            bad(
+                &path,
+                "no `rosbag2_bagfile_information`, expected rosbag2 metadata",
+            )
+        })?;
     let storage = info["storage_identifier"]
         .as_str()
         .ok_or_else(|| bad(&path, "no `storage_identifier` (mcap or sqlite3)"))?
         .to_string();
     let names: Vec<String> = info["relative_file_paths"]
         .as_vec()
-        .map(|v| v.iter().filter_map(|n| n.as_str().map(str::to_string)).collect())
+        .map(|v| {
+            v.iter()
+                .filter_map(|n| n.as_str().map(str::to_string))
+                .collect()
+        })
         .unwrap_or_default();
     if names.is_empty() {
-        return Err(bad(&path, "no `relative_file_paths`, expected the bag's storage files"));
+        return Err(bad(
+            &path,
+            "no `relative_file_paths`, expected the bag's storage files",
+        ));
     }
-    if let Some(n) = names.iter().find(|n| Path::new(n).is_absolute() || n.contains("..")) {
-        return Err(bad(&path, &format!("file `{n}` is not inside the bag folder")));
+    if let Some(n) = names
+        .iter()
+        .find(|n| Path::new(n).is_absolute() || n.contains(".."))
+    {
+        return Err(bad(
+            &path,
+            &format!("file `{n}` is not inside the bag folder"),
+        ));
     }
     Ok((storage, names))
 }
@@ -344,7 +393,11 @@ pub fn read_map(
     let mut bag = Bag::open(path)?;
     let topic = bag.map_topic(topic)?;
     let data = bag.message(&topic, choice)?;
-    let msg: crate::msgs::OccupancyGrid = crate::cdr::decode(&data)
-        .map_err(|e| bad(path, &format!("{topic}: not a nav_msgs/msg/OccupancyGrid: {e}")))?;
+    let msg: crate::msgs::OccupancyGrid = crate::cdr::decode(&data).map_err(|e| {
+        bad(
+            path,
+            &format!("{topic}: not a nav_msgs/msg/OccupancyGrid: {e}"),
+        )
+    })?;
     crate::grid::from_msg(path, &msg, thresholds, max_cells)
 }

@@ -65,7 +65,9 @@ mod tests {
         // header, sec, nanosec, string length 4 ("map\0"), "map\0".
         assert_eq!(
             bytes,
-            [0, 1, 0, 0, 1, 0, 0, 0, 2, 0, 0, 0, 4, 0, 0, 0, b'm', b'a', b'p', 0]
+            [
+                0, 1, 0, 0, 1, 0, 0, 0, 2, 0, 0, 0, 4, 0, 0, 0, b'm', b'a', b'p', 0
+            ]
         );
         assert_eq!(decode::<Header>(&bytes).expect("decode"), header);
     }
@@ -78,7 +80,10 @@ mod tests {
         };
         assert_eq!(decode::<Path>(&encode(&path).expect("e")).expect("d"), path);
         let odom = Odometry::default();
-        assert_eq!(decode::<Odometry>(&encode(&odom).expect("e")).expect("d"), odom);
+        assert_eq!(
+            decode::<Odometry>(&encode(&odom).expect("e")).expect("d"),
+            odom
+        );
         let mut grid = OccupancyGrid {
             data: vec![-1, 0, 100],
             ..OccupancyGrid::default()
@@ -96,9 +101,17 @@ mod tests {
     #[test]
     fn bad_messages_are_one_line_errors() {
         assert!(decode::<Header>(&[0, 1]).unwrap_err().contains("shorter"));
-        assert!(decode::<Header>(&[0, 7, 0, 0]).unwrap_err().contains("representation"));
+        assert!(
+            decode::<Header>(&[0, 7, 0, 0])
+                .unwrap_err()
+                .contains("representation")
+        );
         let mut bytes = encode(&OccupancyGrid::default()).expect("e");
         bytes.truncate(bytes.len() - 3);
-        assert!(decode::<OccupancyGrid>(&bytes).unwrap_err().contains("CDR decoding failed"));
+        assert!(
+            decode::<OccupancyGrid>(&bytes)
+                .unwrap_err()
+                .contains("CDR decoding failed")
+        );
     }
 }

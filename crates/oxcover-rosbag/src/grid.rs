@@ -49,12 +49,13 @@ pub fn from_msg(
             limit: max_cells,
         });
     }
-    let invalid = |field: &'static str, value: String, expected: &'static str| Error::InvalidField {
-        path: path.to_path_buf(),
-        field,
-        value,
-        expected,
-    };
+    let invalid =
+        |field: &'static str, value: String, expected: &'static str| Error::InvalidField {
+            path: path.to_path_buf(),
+            field,
+            value,
+            expected,
+        };
     let r32 = info.resolution;
     if !(r32.is_finite() && r32 > 0.0 && f64::from(r32) <= MAX_RESOLUTION) {
         return Err(invalid(
@@ -65,12 +66,19 @@ pub fn from_msg(
     }
     let resolution: f64 = r32.to_string().parse().unwrap_or(f64::from(r32));
     let o = &info.origin;
-    let origin_ok = [o.position.x, o.position.y].iter().all(|v| v.is_finite() && v.abs() <= MAX_ORIGIN);
+    let origin_ok = [o.position.x, o.position.y]
+        .iter()
+        .all(|v| v.is_finite() && v.abs() <= MAX_ORIGIN);
     let q = &o.orientation;
     if !origin_ok || ![q.x, q.y, q.z, q.w].iter().all(|v| v.is_finite()) {
         return Err(invalid(
             "info.origin",
-            format!("({}, {}) {:?}", o.position.x, o.position.y, [q.x, q.y, q.z, q.w]),
+            format!(
+                "({}, {}) {:?}",
+                o.position.x,
+                o.position.y,
+                [q.x, q.y, q.z, q.w]
+            ),
             "finite coordinates within 1e9 m and a finite quaternion",
         ));
     }
@@ -84,7 +92,12 @@ pub fn from_msg(
             unit: "values (info.width x info.height)",
         });
     }
-    if let Some((i, v)) = msg.data.iter().enumerate().find(|(_, v)| **v < -1 || **v > 100) {
+    if let Some((i, v)) = msg
+        .data
+        .iter()
+        .enumerate()
+        .find(|(_, v)| **v < -1 || **v > 100)
+    {
         return Err(invalid(
             "data",
             format!("{v} at row {}, column {}", i / w, i % w),
@@ -105,10 +118,14 @@ pub fn from_msg(
         }
     };
     // Our rows run top-down, the message's bottom-up.
-    let cells = Grid::from_fn(w, h, |c: Cell| classify(msg.data[(h - 1 - c.row) * w + c.col]));
+    let cells = Grid::from_fn(w, h, |c: Cell| {
+        classify(msg.data[(h - 1 - c.row) * w + c.col])
+    });
     let yaw = q_yaw(q);
-    Ok(oxcover_grid::OccupancyGrid::new(cells, resolution, Point::new(o.position.x, o.position.y))
-        .with_yaw(yaw))
+    Ok(
+        oxcover_grid::OccupancyGrid::new(cells, resolution, Point::new(o.position.x, o.position.y))
+            .with_yaw(yaw),
+    )
 }
 
 /// The yaw of a map origin's quaternion; exactly 0 for the identity (and
@@ -177,7 +194,11 @@ mod tests {
         assert_eq!(msg.info.resolution, 0.05_f32);
         let back = from_msg(Path::new("m"), &msg, &Thresholds::default(), 1 << 20).expect("read");
         assert_eq!(back.cells(), grid.cells());
-        assert_eq!(back.resolution(), 0.05, "the float32 read as the decimal written");
+        assert_eq!(
+            back.resolution(),
+            0.05,
+            "the float32 read as the decimal written"
+        );
         assert_eq!(back.frame().origin(), grid.frame().origin());
         assert!((back.frame().yaw() - 0.5).abs() < 1e-12);
     }

@@ -40,13 +40,23 @@ fn base(ns: &str, id: i32, kind: i32, width: f64, rgb: [u8; 3]) -> Marker {
 #[must_use]
 pub fn polyline(ns: &str, id: i32, points: &[(f64, f64)], width: f64, rgb: [u8; 3]) -> Marker {
     let mut m = base(ns, id, Marker::LINE_STRIP, width, rgb);
-    m.points = points.iter().map(|&(x, y)| Point { x, y, z: 0.0 }).collect();
+    m.points = points
+        .iter()
+        .map(|&(x, y)| Point { x, y, z: 0.0 })
+        .collect();
     m
 }
 
 /// A `TEXT_VIEW_FACING` marker showing `text` at (x, y), `height` metres tall.
 #[must_use]
-pub fn text(ns: &str, id: i32, (x, y): (f64, f64), text: &str, height: f64, rgb: [u8; 3]) -> Marker {
+pub fn text(
+    ns: &str,
+    id: i32,
+    (x, y): (f64, f64),
+    text: &str,
+    height: f64,
+    rgb: [u8; 3],
+) -> Marker {
     let mut m = base(ns, id, Marker::TEXT_VIEW_FACING, height, rgb);
     m.pose.position = Point { x, y, z: 0.0 };
     m.text = text.into();
@@ -65,7 +75,11 @@ pub fn rooms(labels: &Grid<u32>, frame: &MapFrame, anchors: &[(u32, (f64, f64))]
     let corner = |row: usize, col: usize| {
         // Corner (row, col) of the cell lattice: row counts down from the top.
         let p = frame.position(row as f64 - 0.5, col as f64 - 0.5);
-        Point { x: p.x, y: p.y, z: 0.0 }
+        Point {
+            x: p.x,
+            y: p.y,
+            z: 0.0,
+        }
     };
     for row in 0..h {
         for col in 0..w {
@@ -102,12 +116,25 @@ pub fn rooms(labels: &Grid<u32>, frame: &MapFrame, anchors: &[(u32, (f64, f64))]
         if points.is_empty() {
             continue;
         }
-        let mut m = base("rooms", label as i32, Marker::LINE_LIST, width, [31, 119, 180]);
+        let mut m = base(
+            "rooms",
+            label as i32,
+            Marker::LINE_LIST,
+            width,
+            [31, 119, 180],
+        );
         m.points = points;
         markers.push(m);
     }
     for &(label, at) in anchors {
-        markers.push(text("room_labels", label as i32, at, &label.to_string(), 10.0 * width, [0, 0, 0]));
+        markers.push(text(
+            "room_labels",
+            label as i32,
+            at,
+            &label.to_string(),
+            10.0 * width,
+            [0, 0, 0],
+        ));
     }
     MarkerArray { markers }
 }

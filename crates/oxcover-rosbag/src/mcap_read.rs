@@ -13,8 +13,8 @@ use std::io::{BufReader, Read, Seek, SeekFrom};
 use std::path::{Path, PathBuf};
 
 use mcap::records::{self, Record, op};
-use mcap::sans_io::summary_reader::{SummaryReadEvent, SummaryReader, SummaryReaderOptions};
 use mcap::sans_io::linear_reader::LinearReaderOptions;
+use mcap::sans_io::summary_reader::{SummaryReadEvent, SummaryReader, SummaryReaderOptions};
 
 use crate::bag::{TopicInfo, bad};
 use oxcover_grid::Error;
@@ -57,7 +57,10 @@ impl McapFile {
         let mut head = [0u8; 8];
         let n = read_up_to(&mut file, &mut head).map_err(io)?;
         if head[..n] != MAGIC[..n.min(MAGIC.len())] || n < MAGIC.len() {
-            return Err(bad(path, "not an MCAP file (it does not begin with the MCAP magic bytes)"));
+            return Err(bad(
+                path,
+                "not an MCAP file (it does not begin with the MCAP magic bytes)",
+            ));
         }
         let mut me = Self {
             path: path.to_path_buf(),
@@ -109,21 +112,31 @@ impl McapFile {
         let s = self.summary.as_ref()?;
         let stats = s.stats.as_ref()?;
         let indexed_messages: bool = !s.chunk_indexes.is_empty()
-            && s.chunk_indexes.iter().all(|c| !c.message_index_offsets.is_empty() || c.chunk_length == 0);
+            && s.chunk_indexes
+                .iter()
+                .all(|c| !c.message_index_offsets.is_empty() || c.chunk_length == 0);
         (indexed_messages || stats.message_count == 0).then_some(s)
     }
 
     /// Every topic with its type and message count.
     pub(crate) fn topics(&mut self) -> Result<Vec<TopicInfo>, Error> {
         if let Some(summary) = self.indexed() {
-            let counts = &summary.stats.as_ref().map(|s| s.channel_message_counts.clone()).unwrap_or_default();
+            let counts = &summary
+                .stats
+                .as_ref()
+                .map(|s| s.channel_message_counts.clone())
+                .unwrap_or_default();
             let mut topics: BTreeMap<String, TopicInfo> = BTreeMap::new();
             let mut channels: Vec<_> = summary.channels.values().collect();
             channels.sort_by_key(|c| c.id);
             for c in channels {
                 let t = topics.entry(c.topic.clone()).or_insert_with(|| TopicInfo {
                     name: c.topic.clone(),
-                    type_name: c.schema.as_ref().map(|s| s.name.clone()).unwrap_or_default(),
+                    type_name: c
+                        .schema
+                        .as_ref()
+                        .map(|s| s.name.clone())
+                        .unwrap_or_default(),
                     count: 0,
                 });
                 t.count += counts.get(&c.id).copied().unwrap_or(0);
@@ -132,11 +145,17 @@ impl McapFile {
         }
         let mut topics: BTreeMap<String, TopicInfo> = BTreeMap::new();
         self.stream(|channel, _, _| {
-            let t = topics.entry(channel.topic.clone()).or_insert_with(|| TopicInfo {
-                name: channel.topic.clone(),
-                type_name: channel.schema.as_ref().map(|s| s.name.clone()).unwrap_or_default(),
-                count: 0,
-            });
+            let t = topics
+                .entry(channel.topic.clone())
+                .or_insert_with(|| TopicInfo {
+                    name: channel.topic.clone(),
+                    type_name: channel
+                        .schema
+                        .as_ref()
+                        .map(|s| s.name.clone())
+                        .unwrap_or_default(),
+                    count: 0,
+                });
             t.count += 1;
             false
         })?;
@@ -161,7 +180,10 @@ impl McapFile {
         })?;
         times.sort_unstable();
         let Some(&(_, want)) = usize::try_from(k).ok().and_then(|k| times.get(k)) else {
-            return Err(bad(&self.path, &format!("topic {topic} has no message {k}")));
+            return Err(bad(
+                &self.path,
+                &format!("topic {topic} has no message {k}"),
+            ));
         };
         let mut seq = 0u64;
         let mut found = None;
@@ -179,14 +201,22 @@ impl McapFile {
     }
 
     fn nth_indexed(&mut self, topic: &str, k: u64) -> Result<Vec<u8>, Error> {
-        let summary = self.summary.take().ok_or_else(|| bad(&self.path, "no summary"))?;
+        let summary = self
+            .summary
+            .take()
+            .ok_or_else(|| bad(&self.path, "no summary"))?;
         let result = self.nth_in(&summary, topic, k);
         self.summary = Some(summary);
         result
     }
 
     fn nth_in(&mut self, summary: &mcap::Summary, topic: &str, k: u64) -> Result<Vec<u8>, Error> {
-        let ids: Vec<u16> = summary.channels.values().filter(|c| c.topic == topic).map(|c| c.id).collect();
+        let ids: Vec<u16> = summary
+            .channels
+            .values()
+            .filter(|c| c.topic == topic)
+            .map(|c| c.id)
+            .collect();
         let mut entries: Vec<Entry> = Vec::new();
         for (chunk, index) in summary.chunk_indexes.iter().enumerate() {
             let mut in_chunk: Vec<(u64, u64)> = Vec::new();
@@ -197,24 +227,46 @@ impl McapFile {
                 }
             }
             in_chunk.sort_unstable();
-            entries.extend(in_chunk.iter().enumerate().map(|(rank, &(_, log_time))| Entry { log_time, chunk, rank }));
+            entries.extend(
+                in_chunk
+                    .iter()
+                    .enumerate()
+                    .map(|(rank, &(_, log_time))| Entry {
+                        log_time,
+                        chunk,
+                        rank,
+                    }),
+            );
         }
         entries.sort_unstable();
-        let Some(entry) = usize::try_from(k).ok().and_then(|k| entries.get(k)).copied() else {
-            return Err(bad(&self.path, &format!("topic {topic} has no message {k}")));
+        let Some(entry) = usize::try_from(k)
+            .ok()
+            .and_then(|k| entries.get(k))
+            .copied()
+        else {
+            return Err(bad(
+                &self.path,
+                &format!("topic {topic} has no message {k}"),
+            ));
         };
         let index = &summary.chunk_indexes[entry.chunk];
         let bytes = self.read_at(index.chunk_start_offset, index.chunk_length)?;
-        let body = bytes.get(9..).ok_or_else(|| bad(&self.path, "a chunk index points past a chunk"))?;
+        let body = bytes
+            .get(9..)
+            .ok_or_else(|| bad(&self.path, "a chunk index points past a chunk"))?;
         let (header, data) = match mcap::parse_record(op::CHUNK, body) {
             Ok(Record::Chunk { header, data }) => (header, data),
-            Ok(_) | Err(_) => return Err(bad(&self.path, "a chunk index does not point to a chunk")),
+            Ok(_) | Err(_) => {
+                return Err(bad(&self.path, "a chunk index does not point to a chunk"));
+            }
         };
         if usize::try_from(header.uncompressed_size).is_ok_and(|n| n > RECORD_LIMIT) {
             return Err(self.mcap_error(&mcap::McapError::ChunkTooLarge(header.uncompressed_size)));
         }
         let mut rank = 0;
-        for record in mcap::read::ChunkReader::new(header, &data).map_err(|e| self.mcap_error(&e))? {
+        for record in
+            mcap::read::ChunkReader::new(header, &data).map_err(|e| self.mcap_error(&e))?
+        {
             if let Record::Message { header, data } = record.map_err(|e| self.mcap_error(&e))? {
                 if ids.contains(&header.channel_id) {
                     if rank == entry.rank {
@@ -224,20 +276,33 @@ impl McapFile {
                 }
             }
         }
-        Err(bad(&self.path, &format!("message {k} of {topic} is missing from the chunk its index names")))
+        Err(bad(
+            &self.path,
+            &format!("message {k} of {topic} is missing from the chunk its index names"),
+        ))
     }
 
     /// The message index record at `offset`.
     fn message_index(&mut self, offset: u64) -> Result<records::MessageIndex, Error> {
         let head = self.read_at(offset, 9)?;
-        let len = u64::from_le_bytes(head[1..9].try_into().map_err(|_| bad(&self.path, "short record"))?);
+        let len = u64::from_le_bytes(
+            head[1..9]
+                .try_into()
+                .map_err(|_| bad(&self.path, "short record"))?,
+        );
         if head[0] != op::MESSAGE_INDEX || len > RECORD_LIMIT as u64 {
-            return Err(bad(&self.path, "a chunk index does not point to a message index"));
+            return Err(bad(
+                &self.path,
+                "a chunk index does not point to a message index",
+            ));
         }
         let body = self.read_at(offset + 9, len)?;
         match mcap::parse_record(op::MESSAGE_INDEX, &body) {
             Ok(Record::MessageIndex(mi)) => Ok(mi),
-            Ok(_) => Err(bad(&self.path, "a chunk index does not point to a message index")),
+            Ok(_) => Err(bad(
+                &self.path,
+                "a chunk index does not point to a message index",
+            )),
             Err(e) => Err(self.mcap_error(&e)),
         }
     }
@@ -247,12 +312,17 @@ impl McapFile {
         if len > RECORD_LIMIT as u64 {
             return Err(self.mcap_error(&mcap::McapError::ChunkTooLarge(len)));
         }
-        self.file.seek(SeekFrom::Start(offset)).map_err(|e| self.io(e))?;
+        self.file
+            .seek(SeekFrom::Start(offset))
+            .map_err(|e| self.io(e))?;
         let mut buf = vec![0u8; len as usize];
         let n = read_up_to(&mut self.file, &mut buf).map_err(|e| self.io(e))?;
         self.bytes_read += n as u64;
         if n < buf.len() {
-            return Err(bad(&self.path, "truncated: an index points past the end of the file"));
+            return Err(bad(
+                &self.path,
+                "truncated: an index points past the end of the file",
+            ));
         }
         Ok(buf)
     }
@@ -268,9 +338,13 @@ impl McapFile {
         let options = LinearReaderOptions::default()
             .with_validate_chunk_crcs(true)
             .with_record_length_limit(RECORD_LIMIT);
-        let reader = mcap::io::MessageReader::new_with_options(BufReader::new(Counted(file, &mut self.bytes_read)), options);
+        let reader = mcap::io::MessageReader::new_with_options(
+            BufReader::new(Counted(file, &mut self.bytes_read)),
+            options,
+        );
         for message in reader {
-            let message = message.map_err(|e| bad(&self.path, &format!("not a readable MCAP file: {e}")))?;
+            let message =
+                message.map_err(|e| bad(&self.path, &format!("not a readable MCAP file: {e}")))?;
             if visit(&message.channel, message.log_time, &message.data) {
                 break;
             }

@@ -185,7 +185,10 @@ impl<'de> Deserialize<'de> for Covariance {
             fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
                 f.write_str("36 float64")
             }
-            fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Covariance, A::Error> {
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> Result<Covariance, A::Error> {
                 let mut out = [0.0; 36];
                 for (i, v) in out.iter_mut().enumerate() {
                     *v = seq
@@ -344,16 +347,36 @@ pub struct MarkerArray {
 /// One type's own fields (package-relative names resolve in its package)
 /// and the full names of the types it uses.
 const DEFINITIONS: &[(&str, &str, &[&str])] = &[
-    ("builtin_interfaces/Time", "int32 sec\nuint32 nanosec\n", &[]),
-    ("builtin_interfaces/Duration", "int32 sec\nuint32 nanosec\n", &[]),
+    (
+        "builtin_interfaces/Time",
+        "int32 sec\nuint32 nanosec\n",
+        &[],
+    ),
+    (
+        "builtin_interfaces/Duration",
+        "int32 sec\nuint32 nanosec\n",
+        &[],
+    ),
     (
         "std_msgs/Header",
         "builtin_interfaces/Time stamp\nstring frame_id\n",
         &["builtin_interfaces/Time"],
     ),
-    ("std_msgs/ColorRGBA", "float32 r\nfloat32 g\nfloat32 b\nfloat32 a\n", &[]),
-    ("geometry_msgs/Point", "float64 x\nfloat64 y\nfloat64 z\n", &[]),
-    ("geometry_msgs/Vector3", "float64 x\nfloat64 y\nfloat64 z\n", &[]),
+    (
+        "std_msgs/ColorRGBA",
+        "float32 r\nfloat32 g\nfloat32 b\nfloat32 a\n",
+        &[],
+    ),
+    (
+        "geometry_msgs/Point",
+        "float64 x\nfloat64 y\nfloat64 z\n",
+        &[],
+    ),
+    (
+        "geometry_msgs/Vector3",
+        "float64 x\nfloat64 y\nfloat64 z\n",
+        &[],
+    ),
     (
         "geometry_msgs/Quaternion",
         "float64 x 0\nfloat64 y 0\nfloat64 z 0\nfloat64 w 1\n",
@@ -413,8 +436,16 @@ const DEFINITIONS: &[(&str, &str, &[&str])] = &[
         "std_msgs/Header header\nstring format\nuint8[] data\n",
         &["std_msgs/Header"],
     ),
-    ("visualization_msgs/UVCoordinate", "float32 u\nfloat32 v\n", &[]),
-    ("visualization_msgs/MeshFile", "string filename\nuint8[] data\n", &[]),
+    (
+        "visualization_msgs/UVCoordinate",
+        "float32 u\nfloat32 v\n",
+        &[],
+    ),
+    (
+        "visualization_msgs/MeshFile",
+        "string filename\nuint8[] data\n",
+        &[],
+    ),
     (
         "visualization_msgs/Marker",
         "int32 LINE_STRIP=4\nint32 LINE_LIST=5\nint32 TEXT_VIEW_FACING=9\nint32 ADD=0\n\
@@ -502,7 +533,11 @@ mod tests {
             }
             let text = schema_text(name).expect("defined");
             for d in *deps {
-                assert_eq!(text.matches(&format!("MSG: {d}\n")).count(), 1, "{name}: {d}");
+                assert_eq!(
+                    text.matches(&format!("MSG: {d}\n")).count(),
+                    1,
+                    "{name}: {d}"
+                );
             }
         }
         let path = schema_text(types::PATH).expect("path");

@@ -25,7 +25,10 @@ impl SqliteFile {
     pub(crate) fn open(path: &Path) -> Result<Self, Error> {
         let head = crate::bag::head(path, MAGIC.len())?;
         if head != MAGIC {
-            return Err(bad(path, "not an SQLite 3 database (a rosbag2 .db3 file begins with `SQLite format 3`)"));
+            return Err(bad(
+                path,
+                "not an SQLite 3 database (a rosbag2 .db3 file begins with `SQLite format 3`)",
+            ));
         }
         let db = Connection::open_with_flags(
             path,
@@ -48,14 +51,20 @@ impl SqliteFile {
                 .optional()
                 .map_err(|e| me.sql(&e))?;
             if found.is_none() {
-                return Err(bad(path, &format!("an SQLite database without the rosbag2 table `{table}`")));
+                return Err(bad(
+                    path,
+                    &format!("an SQLite database without the rosbag2 table `{table}`"),
+                ));
             }
         }
         Ok(me)
     }
 
     fn sql(&self, e: &rusqlite::Error) -> Error {
-        bad(&self.path, &format!("not a readable rosbag2 sqlite3 file: {e}"))
+        bad(
+            &self.path,
+            &format!("not a readable rosbag2 sqlite3 file: {e}"),
+        )
     }
 
     /// Every topic with its type and message count.
@@ -76,7 +85,8 @@ impl SqliteFile {
                 })
             })
             .map_err(|e| self.sql(&e))?;
-        rows.collect::<Result<Vec<_>, _>>().map_err(|e| self.sql(&e))
+        rows.collect::<Result<Vec<_>, _>>()
+            .map_err(|e| self.sql(&e))
     }
 
     /// The data of message `k` (from 0, by timestamp, then row id) of `topic`.

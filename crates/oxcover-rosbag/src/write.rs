@@ -127,7 +127,10 @@ pub fn write_mcap(bag: &PlanBag<'_>, file_name: &str) -> Result<Vec<u8>, String>
         name: topics::MAP,
         type_name: types::OCCUPANCY_GRID,
         transient_local: true,
-        messages: vec![(0, cdr::encode(&grid::to_msg(bag.map, Time::default())).map_err(enc)?)],
+        messages: vec![(
+            0,
+            cdr::encode(&grid::to_msg(bag.map, Time::default())).map_err(enc)?,
+        )],
     }];
     if !bag.path.is_empty() {
         let path = msgs::Path {
@@ -176,8 +179,16 @@ pub fn write_mcap(bag: &PlanBag<'_>, file_name: &str) -> Result<Vec<u8>, String>
                     },
                     twist: TwistWithCovariance {
                         twist: Twist {
-                            linear: msgs::Point { x: s.v, y: 0.0, z: 0.0 },
-                            angular: msgs::Point { x: 0.0, y: 0.0, z: s.w },
+                            linear: msgs::Point {
+                                x: s.v,
+                                y: 0.0,
+                                z: 0.0,
+                            },
+                            angular: msgs::Point {
+                                x: 0.0,
+                                y: 0.0,
+                                z: s.w,
+                            },
                         },
                         ..TwistWithCovariance::default()
                     },
@@ -230,7 +241,10 @@ fn write_topics(topics: &[Topic], file_name: &str) -> mcap::McapResult<Vec<u8>> 
         )?;
     }
     let mut meta = BTreeMap::new();
-    meta.insert("serialized_metadata".to_string(), metadata_yaml(topics, file_name, &all));
+    meta.insert(
+        "serialized_metadata".to_string(),
+        metadata_yaml(topics, file_name, &all),
+    );
     out.write_metadata(&Metadata {
         name: "rosbag2".into(),
         metadata: meta,

@@ -56,9 +56,15 @@ pub fn path_poses(points: &[Point], resolution: f64, time: &TimeModel) -> Vec<St
 /// As [`segment`] (not expected with the defaults).
 pub fn room_markers(map: &OccupancyGrid) -> Result<MarkerArray> {
     let rooms = segment(map, &SegmentOptions::default())?;
-    let labels: &Grid<u32> = &rooms.labels;
+    Ok(label_markers(map, &rooms.labels))
+}
+
+/// Room outlines and labels of a label grid (0 no room, 1..=n rooms), each
+/// label at its room's cell nearest the room's centroid.
+#[must_use]
+pub fn label_markers(map: &OccupancyGrid, labels: &Grid<u32>) -> MarkerArray {
     let frame = map.frame();
-    let n = rooms.count();
+    let n = labels.as_slice().iter().copied().max().unwrap_or(0) as usize;
     let mut sums = vec![(0.0, 0.0, 0usize); n + 1];
     for c in labels.cells() {
         let l = labels[c] as usize;
@@ -91,7 +97,7 @@ pub fn room_markers(map: &OccupancyGrid) -> Result<MarkerArray> {
             })
         })
         .collect();
-    Ok(markers::rooms(labels, frame, &anchors))
+    markers::rooms(labels, frame, &anchors)
 }
 
 /// Zones (green outlines, namespace `zones`), keep-out areas (red,
@@ -102,12 +108,19 @@ pub fn target_markers(targets: &Targets, resolution: f64) -> Option<MarkerArray>
     const ZONE: [u8; 3] = [44, 160, 44];
     const KEEP_OUT: [u8; 3] = [214, 39, 40];
     let mut out = Vec::new();
-    let ring = |r: &geo::LineString<f64>| -> Vec<(f64, f64)> { r.coords().map(|c| (c.x, c.y)).collect() };
+    let ring =
+        |r: &geo::LineString<f64>| -> Vec<(f64, f64)> { r.coords().map(|c| (c.x, c.y)).collect() };
     let width = resolution;
     if let Some(z) = &targets.zones {
         for p in &z.polygons {
             for r in std::iter::once(p.exterior()).chain(p.interiors()) {
-                out.push(markers::polyline("zones", out.len() as i32, &ring(r), width, ZONE));
+                out.push(markers::polyline(
+                    "zones",
+                    out.len() as i32,
+                    &ring(r),
+                    width,
+                    ZONE,
+                ));
             }
         }
     }
@@ -116,19 +129,40 @@ pub fn target_markers(targets: &Targets, resolution: f64) -> Option<MarkerArray>
         let circle: Vec<(f64, f64)> = (0..=n)
             .map(|i| {
                 let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
-                (s.centre.x + s.radius * a.cos(), s.centre.y + s.radius * a.sin())
+                (
+                    s.centre.x + s.radius * a.cos(),
+                    s.centre.y + s.radius * a.sin(),
+                )
             })
             .collect();
-        out.push(markers::polyline("zones", out.len() as i32, &circle, width, ZONE));
+        out.push(markers::polyline(
+            "zones",
+            out.len() as i32,
+            &circle,
+            width,
+            ZONE,
+        ));
     }
     if let Some(k) = &targets.keep_out {
         for p in &k.polygons {
             for r in std::iter::once(p.exterior()).chain(p.interiors()) {
-                out.push(markers::polyline("keep_out", out.len() as i32, &ring(r), width, KEEP_OUT));
+                out.push(markers::polyline(
+                    "keep_out",
+                    out.len() as i32,
+                    &ring(r),
+                    width,
+                    KEEP_OUT,
+                ));
             }
         }
         for l in &k.lines {
-            out.push(markers::polyline("virtual_walls", out.len() as i32, &ring(l), 2.0 * width, KEEP_OUT));
+            out.push(markers::polyline(
+                "virtual_walls",
+                out.len() as i32,
+                &ring(l),
+                2.0 * width,
+                KEEP_OUT,
+            ));
         }
     }
     (!out.is_empty()).then_some(MarkerArray { markers: out })
@@ -157,7 +191,9 @@ pub fn bag_bytes(
     extras: BagExtras,
     out: &Path,
 ) -> Result<Vec<u8>> {
-    let name = out.file_name().map_or_else(|| "plan.mcap".into(), |n| n.to_string_lossy().into_owned());
+    let name = out
+        .file_name()
+        .map_or_else(|| "plan.mcap".into(), |n| n.to_string_lossy().into_owned());
     let bag = PlanBag {
         map,
         path: path_poses(points, map.resolution(), time),

@@ -86,9 +86,9 @@ pub use oxcover_grid as grid;
 pub use oxcover_planners as planners;
 /// Robot kinematics, control and polygonal worlds ([`oxcover_robot`]).
 pub use oxcover_robot as robot;
-/// Camera occupancy mapping ([`oxcover_vision`]).
-pub use oxcover_vision as vision;
 /// ROS 2 bags: maps read from rosbag2, plans written as MCAP.
 pub use oxcover_rosbag as rosbag;
+/// Camera occupancy mapping ([`oxcover_vision`]).
+pub use oxcover_vision as vision;
 /// Polygonal worlds, range sensing and the sensor-based planner ([`oxcover_world`]).
 pub use oxcover_world as world;

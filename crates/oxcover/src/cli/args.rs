@@ -9,7 +9,9 @@ use oxcover::grid::{DiscRobot, OccupancyGrid, Point};
 use oxcover::planners::TimeModel;
 use oxcover::{Error, Result};
 
-pub(crate) use oxcover::output::{ANY, MCAP, Output, PICTURE, PNG, SVG, YAML, asked, check_outputs};
+pub(crate) use oxcover::output::{
+    ANY, MCAP, Output, PICTURE, PNG, SVG, YAML, asked, check_outputs,
+};
 use oxcover::pipeline::{MapReading, load_map_with};
 use oxcover::rosbag::MessageChoice;
 

@@ -12,7 +12,7 @@ use super::targets::TargetArgs;
 
 #[derive(Debug, clap::Args)]
 pub(crate) struct EvalArgs {
-    /// Map file.
+    /// Map: .yaml, .pgm, .png, .bmp, .map, or a rosbag2 bag (folder, .mcap, .db3).
     pub(crate) map: PathBuf,
     /// Path file (CSV with header x,y).
     pub(crate) path: PathBuf,

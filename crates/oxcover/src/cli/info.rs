@@ -12,13 +12,46 @@ use super::args::{MapArgs, load, map_rows};
 
 #[derive(Debug, clap::Args)]
 pub(crate) struct InfoArgs {
-    /// Map file.
+    /// Map file, or a rosbag2 bag (its topics are listed, then its map).
     pub(crate) map: PathBuf,
     #[command(flatten)]
     pub(crate) reading: MapArgs,
 }
 
+/// A bag's topics, with their types and message counts; whether one is
+/// an OccupancyGrid (then the map is described after them).
+fn bag_topics(a: &InfoArgs) -> Result<bool> {
+    let mut bag = oxcover::rosbag::Bag::open(&a.map)?;
+    let topics = bag.topics()?;
+    let mut out = super::out::stdout();
+    let _ = writeln!(out, "{}: {} topics", a.map.display(), topics.len());
+    let w = topics
+        .iter()
+        .map(|t| t.name.len())
+        .max()
+        .unwrap_or(5)
+        .max(5);
+    let tw = topics
+        .iter()
+        .map(|t| t.type_name.len())
+        .max()
+        .unwrap_or(4)
+        .max(4);
+    let _ = writeln!(out, "  {:<w$}  {:<tw$}  messages", "topic", "type");
+    for t in &topics {
+        let _ = writeln!(
+            out,
+            "  {:<w$}  {:<tw$}  {:>8}",
+            t.name, t.type_name, t.count
+        );
+    }
+    Ok(a.reading.topic.is_some() || bag.map_topic(None).is_ok())
+}
+
 pub(crate) fn cmd_info(a: &InfoArgs) -> Result<()> {
+    if oxcover::rosbag::is_bag(&a.map) && !bag_topics(a)? {
+        return Ok(());
+    }
     let map = load(&a.map, &a.reading)?;
     let f = map.frame();
     let (lo, hi) = f.bounds();

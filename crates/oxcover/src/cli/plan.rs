@@ -10,8 +10,8 @@ use oxcover::planners::{PlannerOptions, Start};
 use oxcover::report::table;
 
 use super::args::{
-    ANY, MCAP, OnOff, Output, PNG, RobotArgs, SVG, TimeArgs, asked, check_outputs, clearance_of, load,
-    note_later, parse_start, robot_of,
+    ANY, MCAP, OnOff, Output, PNG, RobotArgs, SVG, TimeArgs, asked, check_outputs, clearance_of,
+    load, note_later, parse_start, robot_of,
 };
 use super::targets::TargetArgs;
 

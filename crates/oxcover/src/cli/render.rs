@@ -16,7 +16,7 @@ use super::targets::TargetArgs;
 
 #[derive(Debug, clap::Args)]
 pub(crate) struct RenderArgs {
-    /// Map file.
+    /// Map: .yaml, .pgm, .png, .bmp, .map, or a rosbag2 bag (folder, .mcap, .db3).
     pub(crate) map: PathBuf,
     /// Optional path file to draw (with its coverage).
     pub(crate) path: Option<PathBuf>,

@@ -10,7 +10,7 @@ use oxcover::report::table;
 use oxcover::rooms::{Method, SegmentOptions, door_overlay, report, scene, segment};
 use oxcover::{Error, Result};
 
-use super::args::{MapArgs, PNG, SVG, asked, check_outputs, load};
+use super::args::{MCAP, MapArgs, PNG, SVG, asked, check_outputs, load};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum MethodArg {
@@ -25,7 +25,7 @@ pub(crate) enum MethodArg {
 
 #[derive(Debug, clap::Args)]
 pub(crate) struct SegmentArgs {
-    /// Map file (.yaml, .pgm, .png, .bmp or .map).
+    /// Map: .yaml, .pgm, .png, .bmp, .map, or a rosbag2 bag (folder, .mcap, .db3).
     pub(crate) map: PathBuf,
     /// Segmentation method.
     #[arg(long, value_enum, default_value_t = MethodArg::Doorways)]
@@ -66,6 +66,9 @@ pub(crate) struct SegmentArgs {
     /// PNG picture to write.
     #[arg(long, value_name = "F.png")]
     pub(crate) png: Option<PathBuf>,
+    /// ROS 2 bag to write (MCAP: /map and /rooms, outlines and labels).
+    #[arg(long, value_name = "F.mcap")]
+    pub(crate) bag: Option<PathBuf>,
 }
 
 pub(crate) fn cmd_segment(a: &SegmentArgs) -> Result<()> {
@@ -73,6 +76,7 @@ pub(crate) fn cmd_segment(a: &SegmentArgs) -> Result<()> {
         ("--out", a.out.as_deref(), &["json", "png", "svg"]),
         ("--svg", a.svg.as_deref(), SVG),
         ("--png", a.png.as_deref(), PNG),
+        ("--bag", a.bag.as_deref(), MCAP),
     ]);
     check_outputs(&[&a.map], &outs)?;
     let out_ext = a.out.as_ref().map(|f| {
@@ -119,6 +123,17 @@ pub(crate) fn cmd_segment(a: &SegmentArgs) -> Result<()> {
         .flatten()
     {
         files.push((f.clone(), render_bytes(&picture, f)?));
+    }
+    if let Some(f) = &a.bag {
+        let extras = oxcover::bag::BagExtras {
+            rooms: Some(oxcover::bag::label_markers(&map, &rooms.labels)),
+            ..oxcover::bag::BagExtras::default()
+        };
+        let time = oxcover::planners::TimeModel::default();
+        files.push((
+            f.clone(),
+            oxcover::bag::bag_bytes(&map, &[], &time, extras, f)?,
+        ));
     }
     // All of them or none.
     let written = oxcover::output::write_files(files)?;

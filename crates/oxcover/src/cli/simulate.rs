@@ -148,6 +148,26 @@ pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
             .map_err(|e| Error::Internal(format!("report serialisation failed: {e}")))?;
         files.push((f.clone(), (json + "\n").into_bytes()));
     }
+    if let Some(f) = &p.bag {
+        let extras = oxcover::bag::BagExtras {
+            rooms: Some(oxcover::bag::room_markers(&map)?),
+            targets: oxcover::bag::target_markers(targets, map.resolution()),
+            odom: run
+                .samples
+                .iter()
+                .map(|s| oxcover::rosbag::OdomSample {
+                    t: s.t,
+                    x: s.pose.x,
+                    y: s.pose.y,
+                    yaw: s.pose.theta,
+                    v: s.v,
+                    w: s.omega,
+                })
+                .collect(),
+        };
+        let bytes = oxcover::bag::bag_bytes(&map, &outcome.points, &request.time, extras, f)?;
+        files.push((f.clone(), bytes));
+    }
     let written = oxcover::output::write_files(files)?;
     let mut out = super::out::stdout();
     let _ = writeln!(
