@@ -189,9 +189,9 @@ impl McapFile {
         let mut found = None;
         self.stream(|channel, _, data| {
             if channel.topic == topic {
+                // Read on to the end: each chunk's CRC is checked at its end.
                 if seq == want {
                     found = Some(data.to_vec());
-                    return true;
                 }
                 seq += 1;
             }
@@ -263,23 +263,26 @@ impl McapFile {
         if usize::try_from(header.uncompressed_size).is_ok_and(|n| n > RECORD_LIMIT) {
             return Err(self.mcap_error(&mcap::McapError::ChunkTooLarge(header.uncompressed_size)));
         }
-        let mut rank = 0;
+        // The whole chunk is read: its CRC is checked at its end.
+        let (mut rank, mut found) = (0, None);
         for record in
             mcap::read::ChunkReader::new(header, &data).map_err(|e| self.mcap_error(&e))?
         {
             if let Record::Message { header, data } = record.map_err(|e| self.mcap_error(&e))? {
                 if ids.contains(&header.channel_id) {
                     if rank == entry.rank {
-                        return Ok(data.into_owned());
+                        found = Some(data.into_owned());
                     }
                     rank += 1;
                 }
             }
         }
-        Err(bad(
-            &self.path,
-            &format!("message {k} of {topic} is missing from the chunk its index names"),
-        ))
+        found.ok_or_else(|| {
+            bad(
+                &self.path,
+                &format!("message {k} of {topic} is missing from the chunk its index names"),
+            )
+        })
     }
 
     /// The message index record at `offset`.

@@ -287,6 +287,22 @@ fn bad_bags_are_one_clear_line() {
         b
     };
     assert!(read("xz4.mcap", &unsupported, None).contains("xz4"));
+    // Uncompressed, a flipped byte of the map is caught by the chunk's CRC alone.
+    let plain = dir.join("plain.mcap");
+    write_mcap(
+        &plain,
+        &messages(50),
+        mcap::WriteOptions::new().compression(None),
+    );
+    let mut flipped = std::fs::read(&plain).expect("plain");
+    // The last map's cells: 0 100 100 -1 0 0 (its unknown cell flipped to -2).
+    let at = flipped
+        .windows(4)
+        .position(|w| w == [0, 100, 100, 0xff])
+        .expect("the last map")
+        + 3;
+    flipped[at] ^= 0x01;
+    assert!(read("flipped.mcap", &flipped, None).contains("Chunk CRC failed"));
     assert!(
         read("topic.mcap", &bytes, Some("/nothing"))
             .contains("no topic /nothing; the bag has /chatter")

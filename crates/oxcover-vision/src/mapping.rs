@@ -120,9 +120,21 @@ impl RgbImage {
             path: path.display().to_string(),
             message,
         };
-        let bytes =
-            oxcover_grid::io::limited::read_limited(path, oxcover_grid::io::limited::MAX_MAP_BYTES)
-                .map_err(|e| fail(format!("cannot read it: {e}")))?;
+        let bytes = oxcover_grid::io::limited::read_limited_after(
+            path,
+            oxcover_grid::io::limited::MAX_MAP_BYTES,
+            |head| {
+                if head.is_empty() || head.starts_with(b"\x89PNG") {
+                    Ok(())
+                } else {
+                    Err(format!(
+                        "not a PNG: it begins with {}",
+                        oxcover_grid::io::limited::hex_head(head)
+                    ))
+                }
+            },
+        )
+        .map_err(|e| fail(format!("cannot read it: {e}")))?;
         let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes));
         reader.set_format(image::ImageFormat::Png);
         let mut limits = image::Limits::default();

@@ -69,12 +69,15 @@ pub fn write_csv(path: &Path, points: &[Point]) -> Result<()> {
 /// [`Error::Read`], or [`Error::PathFile`] naming the line: missing `x,y`
 /// header, a non-numeric or non-finite value, a missing column, no waypoint.
 pub fn read_csv(path: &Path) -> Result<Vec<Point>> {
-    let bytes =
-        oxcover_grid::io::limited::read_limited(path, oxcover_grid::io::limited::MAX_PATH_BYTES)
-            .map_err(|source| Error::Read {
-                path: path.to_path_buf(),
-                source,
-            })?;
+    let bytes = oxcover_grid::io::limited::read_limited_after(
+        path,
+        oxcover_grid::io::limited::MAX_PATH_BYTES,
+        oxcover_grid::io::limited::text_head,
+    )
+    .map_err(|source| Error::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
     let text = String::from_utf8(bytes).map_err(|_| Error::PathFile {
         path: path.to_path_buf(),
         line: 1,

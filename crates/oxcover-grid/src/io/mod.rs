@@ -196,10 +196,36 @@ pub(crate) fn decode_image(
     }
 }
 
+/// Accepts the first bytes of a map image or MovingAI map: `P1`..`P6`
+/// (netpbm), PNG's signature, `BM` or `type ` (an empty file is left to
+/// the decoders, which say so).
+///
+/// # Errors
+/// What the file begins with and what was expected.
+pub fn map_head(head: &[u8]) -> std::result::Result<(), String> {
+    let netpbm = head.len() >= 2 && head[0] == b'P' && (b'1'..=b'6').contains(&head[1]);
+    if head.is_empty()
+        || netpbm
+        || head.starts_with(b"\x89PNG")
+        || head.starts_with(b"BM")
+        || looks_like_movingai(head)
+        || MOVINGAI_MAGIC.starts_with(head)
+    {
+        Ok(())
+    } else {
+        Err(format!(
+            "not a PGM, PNG, BMP or MovingAI map: it begins with {}, expected P2/P5, \\x89PNG, BM or `type `",
+            limited::hex_head(head)
+        ))
+    }
+}
+
 pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>> {
-    limited::read_limited(path, limited::MAX_MAP_BYTES).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
+    limited::read_limited_after(path, limited::MAX_MAP_BYTES, map_head).map_err(|source| {
+        Error::Io {
+            path: path.to_path_buf(),
+            source,
+        }
     })
 }
 

@@ -273,26 +273,32 @@ pub fn parse_map_yaml(path: &Path, text: &str) -> Result<MapYaml> {
 /// As [`parse_map_yaml`], plus the image's own errors; a missing image is
 /// reported against the yaml's `image` field.
 pub fn read_ros_yaml(path: &Path, options: &ReadOptions) -> Result<OccupancyGrid> {
-    let bytes =
-        super::limited::read_limited(path, super::limited::MAX_YAML_BYTES).map_err(|source| {
-            Error::Io {
-                path: path.to_path_buf(),
-                source,
-            }
-        })?;
+    let bytes = super::limited::read_limited_after(
+        path,
+        super::limited::MAX_YAML_BYTES,
+        super::limited::text_head,
+    )
+    .map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
     let text = String::from_utf8(bytes).map_err(|_| Error::Format {
         path: path.to_path_buf(),
         message: "not UTF-8 text, expected a ROS map yaml".into(),
     })?;
     let meta = parse_map_yaml(path, &text)?;
-    let image_bytes = super::limited::read_limited(&meta.image, super::limited::MAX_MAP_BYTES)
-        .map_err(|e| Error::Format {
-            path: path.to_path_buf(),
-            message: format!(
-                "field `image` names {}, which cannot be read: {e}",
-                meta.image.display()
-            ),
-        })?;
+    let image_bytes = super::limited::read_limited_after(
+        &meta.image,
+        super::limited::MAX_MAP_BYTES,
+        super::map_head,
+    )
+    .map_err(|e| Error::Format {
+        path: path.to_path_buf(),
+        message: format!(
+            "field `image` names {}, which cannot be read: {e}",
+            meta.image.display()
+        ),
+    })?;
     let cells = decode_image(
         &meta.image,
         &image_bytes,

@@ -18,13 +18,13 @@ pub(crate) struct InfoArgs {
     pub(crate) reading: MapArgs,
 }
 
-/// A bag's topics, with their types and message counts; whether one is
-/// an OccupancyGrid (then the map is described after them).
-fn bag_topics(a: &InfoArgs) -> Result<bool> {
+/// A bag's topics, with their types and message counts, as printed
+/// lines; whether one is an OccupancyGrid (then the map is described
+/// after them).
+fn bag_topics(a: &InfoArgs) -> Result<(Vec<String>, bool)> {
     let mut bag = oxcover::rosbag::Bag::open(&a.map)?;
     let topics = bag.topics()?;
-    let mut out = super::out::stdout();
-    let _ = writeln!(out, "{}: {} topics", a.map.display(), topics.len());
+    let mut lines = vec![format!("{}: {} topics", a.map.display(), topics.len())];
     let w = topics
         .iter()
         .map(|t| t.name.len())
@@ -37,19 +37,32 @@ fn bag_topics(a: &InfoArgs) -> Result<bool> {
         .max()
         .unwrap_or(4)
         .max(4);
-    let _ = writeln!(out, "  {:<w$}  {:<tw$}  messages", "topic", "type");
+    lines.push(format!("  {:<w$}  {:<tw$}  messages", "topic", "type"));
     for t in &topics {
-        let _ = writeln!(
-            out,
+        lines.push(format!(
             "  {:<w$}  {:<tw$}  {:>8}",
             t.name, t.type_name, t.count
-        );
+        ));
     }
-    Ok(a.reading.topic.is_some() || bag.map_topic(None).is_ok())
+    Ok((
+        lines,
+        a.reading.topic.is_some() || bag.map_topic(None).is_ok(),
+    ))
 }
 
 pub(crate) fn cmd_info(a: &InfoArgs) -> Result<()> {
-    if oxcover::rosbag::is_bag(&a.map) && !bag_topics(a)? {
+    // A bag's topics are printed once its map (if it has one) has been
+    // read: a bag that fails prints its one error line and nothing else.
+    let (topic_lines, has_map) = if oxcover::rosbag::is_bag(&a.map) {
+        bag_topics(a)?
+    } else {
+        (Vec::new(), true)
+    };
+    if !has_map {
+        let mut out = super::out::stdout();
+        for l in &topic_lines {
+            let _ = writeln!(out, "{l}");
+        }
         return Ok(());
     }
     let map = load(&a.map, &a.reading)?;
@@ -78,6 +91,9 @@ pub(crate) fn cmd_info(a: &InfoArgs) -> Result<()> {
         ));
     }
     let mut out = super::out::stdout();
+    for l in &topic_lines {
+        let _ = writeln!(out, "{l}");
+    }
     let _ = writeln!(out, "{}", a.map.display());
     let _ = write!(out, "{}", table(&rows));
     Ok(())

@@ -190,7 +190,7 @@ fn bad_inputs_exit_2_with_one_line() {
         (vec!["plan", &walls, "--planner", "dtc"], "no free cell"),
         (
             vec!["plan", &jpeg, "--planner", "dtc"],
-            "not a PGM, PNG or BMP",
+            "not a PGM, PNG, BMP or MovingAI map: it begins with ff d8",
         ),
         (vec!["plan", &missing, "--planner", "dtc"], "cannot read"),
         (

@@ -6,8 +6,8 @@ use std::process::Command;
 
 use crate::{bin, fixtures, scratch};
 
-/// A map, a map yaml or a path file that never ends (a link to /dev/zero)
-/// is refused with the size limit, exit 2, without reading past it.
+/// A map, a map yaml, a bag or a path file that never ends (a link to
+/// /dev/zero) is refused from its first bytes, exit 2, in a moment.
 #[cfg(unix)]
 #[test]
 fn endless_files_are_refused_by_size() {
@@ -24,18 +24,33 @@ fn endless_files_are_refused_by_size() {
         p.display().to_string()
     };
     let (pgm, yaml, csv) = (link("m.pgm"), link("m.yaml"), link("p.csv"));
+    let (mcap, db3, geojson) = (link("b.mcap"), link("b.db3"), link("z.geojson"));
     let map = fixtures()
         .join("navigation_tutorials/lse_arena.yaml")
         .display()
         .to_string();
     for (args, limit) in [
-        (vec!["info", pgm.as_str()], "larger than 1 GiB"),
-        (vec!["info", yaml.as_str()], "larger than 1 MiB"),
         (
-            vec!["eval", map.as_str(), csv.as_str()],
-            "larger than 1 GiB",
+            vec!["info", pgm.as_str()],
+            "not a PGM, PNG, BMP or MovingAI map",
+        ),
+        (vec!["info", yaml.as_str()], "byte 0 is NUL"),
+        (vec!["info", mcap.as_str()], "not an MCAP file"),
+        (vec!["info", db3.as_str()], "not an SQLite 3 database"),
+        (vec!["eval", map.as_str(), csv.as_str()], "byte 0 is NUL"),
+        (
+            vec![
+                "plan",
+                map.as_str(),
+                "--planner",
+                "lanes",
+                "--zones",
+                geojson.as_str(),
+            ],
+            "byte 0 is NUL",
         ),
     ] {
+        let started = std::time::Instant::now();
         let out = Command::new(bin())
             .args(&args)
             .output()
@@ -45,6 +60,12 @@ fn endless_files_are_refused_by_size() {
         assert!(
             err.contains(limit) && err.lines().count() == 1,
             "{args:?}: {err}"
+        );
+        // Reading to the 1 GiB cap took seconds; 64 bytes take none.
+        assert!(
+            started.elapsed().as_secs_f64() < 2.0,
+            "{args:?}: {:?}",
+            started.elapsed()
         );
     }
 }
