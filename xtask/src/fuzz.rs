@@ -24,7 +24,8 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, bail};
-use oxcover_grid::io::{ReadOptions, read_map};
+use oxcover_grid::io::{ReadOptions, Thresholds, read_map};
+use oxcover_rosbag::MessageChoice;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -49,6 +50,12 @@ enum Feed {
     Profile,
     /// A robot description of `simulate`.
     Robot,
+    /// A ROS 2 bag in MCAP storage: written as `input.mcap`, its topics
+    /// listed and its map read (`oxcover_rosbag::read_map`).
+    Mcap,
+    /// One CDR message, decoded as each type a bag of ours holds; an
+    /// OccupancyGrid then read as a map.
+    Cdr,
 }
 
 /// One parser and where its seeds come from.
@@ -129,6 +136,16 @@ pub const TARGETS: &[Target] = &[
         name: "robot-ron",
         feed: Feed::Robot,
         seeds: &["fixtures/robots/floor_cleaner.ron"],
+    },
+    Target {
+        name: "mcap",
+        feed: Feed::Mcap,
+        seeds: &["fixtures/fuzz/seeds/mcap"],
+    },
+    Target {
+        name: "cdr",
+        feed: Feed::Cdr,
+        seeds: &["fixtures/fuzz/seeds/cdr"],
     },
 ];
 
@@ -252,6 +269,37 @@ fn feed(target: &Target, dir: &Path, input: &[u8]) -> Result<(), String> {
         }
         Feed::Robot => {
             let _ = oxcover_robot::RobotSpec::from_ron(&text());
+        }
+        Feed::Mcap => {
+            let file = dir.join("input.mcap");
+            if std::fs::write(&file, input).is_ok() {
+                if let Ok(mut bag) = oxcover_rosbag::Bag::open(&file) {
+                    let _ = bag.topics();
+                }
+                for choice in [MessageChoice::Last, MessageChoice::First] {
+                    let _ = oxcover_rosbag::read_map(
+                        &file,
+                        None,
+                        choice,
+                        &Thresholds::default(),
+                        1 << 24,
+                    );
+                }
+            }
+        }
+        Feed::Cdr => {
+            use oxcover_rosbag::{cdr::decode, msgs};
+            if let Ok(grid) = decode::<msgs::OccupancyGrid>(input) {
+                let _ = oxcover_rosbag::grid::from_msg(
+                    Path::new("input"),
+                    &grid,
+                    &Thresholds::default(),
+                    1 << 24,
+                );
+            }
+            let _ = decode::<msgs::Path>(input);
+            let _ = decode::<msgs::MarkerArray>(input);
+            let _ = decode::<msgs::Odometry>(input);
         }
     };
     std::panic::catch_unwind(AssertUnwindSafe(run)).map_err(|e| {

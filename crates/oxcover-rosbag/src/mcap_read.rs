@@ -13,7 +13,7 @@ use std::io::{BufReader, Read, Seek, SeekFrom};
 use std::path::{Path, PathBuf};
 
 use mcap::records::{self, Record, op};
-use mcap::sans_io::linear_reader::LinearReaderOptions;
+use mcap::sans_io::linear_reader::{LinearReadEvent, LinearReaderOptions};
 use mcap::sans_io::summary_reader::{SummaryReadEvent, SummaryReader, SummaryReaderOptions};
 
 use crate::bag::{TopicInfo, bad};
@@ -251,31 +251,43 @@ impl McapFile {
         };
         let index = &summary.chunk_indexes[entry.chunk];
         let bytes = self.read_at(index.chunk_start_offset, index.chunk_length)?;
-        let body = bytes
-            .get(9..)
-            .ok_or_else(|| bad(&self.path, "a chunk index points past a chunk"))?;
-        let (header, data) = match mcap::parse_record(op::CHUNK, body) {
-            Ok(Record::Chunk { header, data }) => (header, data),
-            Ok(_) | Err(_) => {
-                return Err(bad(&self.path, "a chunk index does not point to a chunk"));
-            }
-        };
-        if usize::try_from(header.uncompressed_size).is_ok_and(|n| n > RECORD_LIMIT) {
-            return Err(self.mcap_error(&mcap::McapError::ChunkTooLarge(header.uncompressed_size)));
-        }
-        // The whole chunk is read: its CRC is checked at its end.
+        // The chunk record is read whole by the crate's linear reader, which
+        // checks the CRC at its end and holds each record inside to the
+        // chunk's own size (a corrupt length cannot ask for more).
+        let limit = usize::try_from(index.uncompressed_size.max(index.chunk_length))
+            .unwrap_or(usize::MAX)
+            .min(RECORD_LIMIT);
+        let mut reader = mcap::sans_io::LinearReader::new_with_options(
+            LinearReaderOptions::default()
+                .with_skip_start_magic(true)
+                .with_skip_end_magic(true)
+                .with_validate_chunk_crcs(true)
+                .with_record_length_limit(limit),
+        );
+        let mut rest: &[u8] = &bytes;
         let (mut rank, mut found) = (0, None);
-        for record in
-            mcap::read::ChunkReader::new(header, &data).map_err(|e| self.mcap_error(&e))?
-        {
-            if let Record::Message { header, data } = record.map_err(|e| self.mcap_error(&e))? {
-                if ids.contains(&header.channel_id) {
-                    if rank == entry.rank {
-                        found = Some(data.into_owned());
+        while let Some(event) = reader.next_event() {
+            match event.map_err(|e| self.mcap_error(&e))? {
+                LinearReadEvent::ReadRequest(need) => {
+                    let n = need.min(rest.len());
+                    reader.insert(n).copy_from_slice(&rest[..n]);
+                    reader.notify_read(n);
+                    rest = &rest[n..];
+                }
+                LinearReadEvent::Record { data, opcode } => {
+                    if let Ok(Record::Message { header, data }) = mcap::parse_record(opcode, data)
+                        && ids.contains(&header.channel_id)
+                    {
+                        if rank == entry.rank {
+                            found = Some(data.into_owned());
+                        }
+                        rank += 1;
                     }
-                    rank += 1;
                 }
             }
+        }
+        if bytes.first() != Some(&op::CHUNK) {
+            return Err(bad(&self.path, "a chunk index does not point to a chunk"));
         }
         found.ok_or_else(|| {
             bad(
