@@ -212,6 +212,23 @@ impl Bag {
         ))
     }
 
+    /// The serialized data of every message on `topic`, file by file, each
+    /// file's in log-time order (for a trajectory; a map is read with
+    /// [`Bag::message`], which reads one).
+    ///
+    /// # Errors
+    /// A storage file that cannot be read.
+    pub fn messages(&mut self, topic: &str) -> Result<Vec<Vec<u8>>, Error> {
+        let mut out = Vec::new();
+        for file in &mut self.files {
+            out.extend(match file {
+                Storage::Mcap(f) => f.all(topic)?,
+                Storage::Sqlite(f) => f.all(topic)?,
+            });
+        }
+        Ok(out)
+    }
+
     /// Bytes read from the bag's MCAP files so far (what an indexed read
     /// spares shows here).
     #[must_use]

@@ -200,6 +200,20 @@ impl McapFile {
         found.ok_or_else(|| bad(&self.path, &format!("topic {topic} has no message {k}")))
     }
 
+    /// The data of every message of `topic`, in log-time order (file
+    /// order among equal times): the file streamed once.
+    pub(crate) fn all(&mut self, topic: &str) -> Result<Vec<Vec<u8>>, Error> {
+        let mut found: Vec<(u64, usize, Vec<u8>)> = Vec::new();
+        self.stream(|channel, log_time, data| {
+            if channel.topic == topic {
+                found.push((log_time, found.len(), data.to_vec()));
+            }
+            false
+        })?;
+        found.sort_by_key(|m| (m.0, m.1));
+        Ok(found.into_iter().map(|m| m.2).collect())
+    }
+
     fn nth_indexed(&mut self, topic: &str, k: u64) -> Result<Vec<u8>, Error> {
         let summary = self
             .summary

@@ -89,6 +89,22 @@ impl SqliteFile {
             .map_err(|e| self.sql(&e))
     }
 
+    /// The data of every message of `topic`, by timestamp, then row id.
+    pub(crate) fn all(&self, topic: &str) -> Result<Vec<Vec<u8>>, Error> {
+        let mut stmt = self
+            .db
+            .prepare(
+                "SELECT m.data FROM messages m JOIN topics t ON m.topic_id = t.id \
+                 WHERE t.name = ?1 ORDER BY m.timestamp, m.id",
+            )
+            .map_err(|e| self.sql(&e))?;
+        let rows = stmt
+            .query_map([topic], |row| row.get(0))
+            .map_err(|e| self.sql(&e))?;
+        rows.collect::<Result<Vec<Vec<u8>>, _>>()
+            .map_err(|e| self.sql(&e))
+    }
+
     /// The data of message `k` (from 0, by timestamp, then row id) of `topic`.
     pub(crate) fn nth(&self, topic: &str, k: u64) -> Result<Vec<u8>, Error> {
         let offset = i64::try_from(k).unwrap_or(i64::MAX);

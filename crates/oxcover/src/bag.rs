@@ -12,6 +12,7 @@ use oxcover_rosbag::{OdomSample, PlanBag, StampedPose, markers};
 
 use crate::error::{Error, Result};
 use crate::metrics::arrival_times;
+use crate::render::{LegendMark, Overlay};
 use crate::rooms::{SegmentOptions, segment};
 use crate::targets::Targets;
 
@@ -202,6 +203,89 @@ pub fn bag_bytes(
         odom: extras.odom,
     };
     oxcover_rosbag::write_mcap(&bag, &name).map_err(Error::Internal)
+}
+
+/// What a bag of a plan holds, decoded for a picture: the path of
+/// `/coverage_path`, the executed trajectory of `/odom`, and the lines of
+/// the markers of `/rooms` and `/coverage_targets` in their colours.
+#[derive(Clone, Debug, Default)]
+pub struct DecodedBag {
+    /// `/coverage_path`'s positions.
+    pub path: Option<Vec<Point>>,
+    /// `/odom`'s positions, in order.
+    pub odom: Option<Vec<Point>>,
+    /// Markers' lines: line strips as strokes, line lists as lines.
+    pub overlay: Overlay,
+}
+
+/// Decodes the plan topics of the bag at `path` (those it has).
+///
+/// # Errors
+/// A bag that cannot be read; a message that does not decode as its type.
+pub fn decode_bag(path: &Path) -> Result<DecodedBag> {
+    use oxcover_rosbag::msgs::{self, Marker};
+    use oxcover_rosbag::{Bag, MessageChoice, cdr};
+    let mut bag = Bag::open(path)?;
+    let topics = bag.topics()?;
+    let mut out = DecodedBag::default();
+    let bad = |topic: &str, e: String| {
+        Error::Map(oxcover_grid::Error::Format {
+            path: path.to_path_buf(),
+            message: format!("{topic}: {e}"),
+        })
+    };
+    let point = |p: &msgs::Point| Point::new(p.x, p.y);
+    for t in &topics {
+        match (t.name.as_str(), t.type_name.as_str()) {
+            ("/coverage_path", oxcover_rosbag::msgs::types::PATH) => {
+                let data = bag.message(&t.name, MessageChoice::Last)?;
+                let m: msgs::Path = cdr::decode(&data).map_err(|e| bad(&t.name, e))?;
+                out.path = Some(m.poses.iter().map(|p| point(&p.pose.position)).collect());
+            }
+            ("/odom", oxcover_rosbag::msgs::types::ODOMETRY) => {
+                let mut odom = Vec::new();
+                for data in bag.messages(&t.name)? {
+                    let m: msgs::Odometry = cdr::decode(&data).map_err(|e| bad(&t.name, e))?;
+                    odom.push(point(&m.pose.pose.position));
+                }
+                out.odom = Some(odom);
+            }
+            ("/rooms" | "/coverage_targets", oxcover_rosbag::msgs::types::MARKER_ARRAY) => {
+                let data = bag.message(&t.name, MessageChoice::Last)?;
+                let m: msgs::MarkerArray = cdr::decode(&data).map_err(|e| bad(&t.name, e))?;
+                for marker in &m.markers {
+                    let c = marker.color;
+                    let rgb = [c.r, c.g, c.b].map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8);
+                    let pts: Vec<Point> = marker.points.iter().map(point).collect();
+                    match marker.kind {
+                        Marker::LINE_STRIP => out.overlay.strokes.push((pts, rgb)),
+                        Marker::LINE_LIST => {
+                            out.overlay
+                                .lines
+                                .extend(pts.chunks_exact(2).map(|w| (w[0], w[1], rgb)));
+                        }
+                        _ => {}
+                    }
+                }
+                let legend = if t.name == "/rooms" {
+                    "rooms"
+                } else {
+                    "targets"
+                };
+                if let Some(first) = m.markers.iter().find(|m| !m.points.is_empty()) {
+                    let c = first.color;
+                    let rgb = [c.r, c.g, c.b].map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8);
+                    out.overlay.legend.push((
+                        format!("{} ({legend})", t.name),
+                        rgb,
+                        LegendMark::Line,
+                    ));
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(out)
 }
 
 #[cfg(test)]

@@ -22,3 +22,54 @@ fn readme_library_example_runs_and_is_current() {
         );
     }
 }
+
+/// The README's ROS 2 picture is what its commands draw today: the plan
+/// written as a bag, then drawn by `render` from the decoded bag.
+#[test]
+fn readme_bag_picture_is_what_its_commands_draw() {
+    let root = std::path::PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
+    let readme = std::fs::read_to_string(root.join("README.md")).expect("README");
+    let m = "fixtures/maps/turtlebot_simulator/simple_rooms.yaml";
+    let k = "fixtures/targets/simple_rooms_keep_out.geojson";
+    for line in [
+        "oxcover plan map_bag/ --planner lanes --bag plan.mcap",
+        "ros2 bag play plan.mcap",
+        "cargo run --release -- plan fixtures/bags/turtlebot3_world_map/ --planner lanes --bag plan.mcap",
+        &format!("M={m}"),
+        &format!("K={k}"),
+        "cargo run --release -- plan $M --planner lanes $R --keep-out $K --bag rooms.mcap",
+        "cargo run --release -- render rooms.mcap $R --keep-out $K --out docs/ros_bag.png",
+    ] {
+        assert!(readme.contains(line), "README lost `{line}`");
+    }
+    let dir = std::env::temp_dir().join(format!("oxcover-readme-bag-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let (bag, png) = (dir.join("rooms.mcap"), dir.join("ros_bag.png"));
+    let robot = ["--robot-radius", "0.15", "--tool-radius", "0.15"];
+    let run = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_oxcover"))
+            .current_dir(&root)
+            .args(args)
+            .output()
+            .expect("run");
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    };
+    let (bag_s, png_s) = (bag.display().to_string(), png.display().to_string());
+    let mut plan = vec!["plan", m, "--planner", "lanes"];
+    plan.extend(robot);
+    plan.extend(["--keep-out", k, "--bag", &bag_s]);
+    run(&plan);
+    let mut render = vec!["render", &bag_s];
+    render.extend(robot);
+    render.extend(["--keep-out", k, "--out", &png_s]);
+    run(&render);
+    let want = std::fs::read(root.join("docs/ros_bag.png")).expect("docs/ros_bag.png");
+    assert!(
+        std::fs::read(&png).expect("png") == want,
+        "docs/ros_bag.png is not what the README's commands draw: run them again"
+    );
+}

@@ -18,7 +18,9 @@ use super::targets::TargetArgs;
 pub(crate) struct RenderArgs {
     /// Map: .yaml, .pgm, .png, .bmp, .map, or a rosbag2 bag (folder, .mcap, .db3).
     pub(crate) map: PathBuf,
-    /// Optional path file to draw (with its coverage).
+    /// Optional path file to draw (with its coverage) [default for a bag
+    /// of a plan: its /coverage_path (or /odom), /rooms and
+    /// /coverage_targets, decoded from it].
     pub(crate) path: Option<PathBuf>,
     /// Output picture, .svg or .png.
     #[arg(long, value_name = "F.svg|F.png")]
@@ -56,6 +58,47 @@ pub(crate) fn cmd_render(a: &RenderArgs) -> Result<()> {
                 rows: metric_rows(&ev.metrics),
             };
             render_to_file(&scene, &a.out)?;
+        }
+        None if oxcover::rosbag::is_bag(&a.map) => {
+            // A bag of a plan: its own path (or executed trajectory, the
+            // plan drawn under it), rooms and targets, decoded from it.
+            let decoded = oxcover::bag::decode_bag(&a.map)?;
+            let mut lines = decoded.overlay.clone();
+            if let Some(o) = overlay {
+                lines.strokes.extend(o.strokes.iter().cloned());
+                lines.lines.extend(o.lines.iter().cloned());
+                lines.legend.extend(o.legend.iter().cloned());
+            }
+            let shown = decoded.odom.as_ref().or(decoded.path.as_ref());
+            match shown {
+                Some(points) if !points.is_empty() => {
+                    let robot = admissible_robot(&a.robot, &map)?;
+                    let ev =
+                        evaluate_targets(&map, robot, points, &MetricParams::default(), &targets)?;
+                    let what = if decoded.odom.is_some() {
+                        "/odom"
+                    } else {
+                        "/coverage_path"
+                    };
+                    let scene = Scene {
+                        map: &map,
+                        path: points,
+                        planned: decoded.odom.as_ref().and(decoded.path.as_deref()),
+                        covered: Some(&ev.covered),
+                        coverable: Some(&ev.problem.coverable),
+                        title: format!("{name} - {what} as decoded from the bag"),
+                        overlay: Some(&lines),
+                        regions: None,
+                        rows: metric_rows(&ev.metrics),
+                    };
+                    render_to_file(&scene, &a.out)?;
+                }
+                _ => {
+                    let mut scene = Scene::map_only(&map, name, map_rows(&map));
+                    scene.overlay = Some(&lines);
+                    render_to_file(&scene, &a.out)?;
+                }
+            }
         }
         None => {
             let mut scene = Scene::map_only(&map, name, map_rows(&map));
