@@ -303,6 +303,29 @@ fn segmentation_section(root: &Path) -> anyhow::Result<()> {
     Ok(())
 }
 
+fn bag_read_section(root: &Path) -> anyhow::Result<()> {
+    let group = root.join("target/criterion/bag_read");
+    let t = |name: &str| estimate_ns(&group.join(name)).map(|(m, _)| m);
+    let pgm = t("pgm").with_context(|| format!("no bag_read results under {}", group.display()))?;
+    let mut md = format!(
+        "Measured by `cargo xtask bench --only bag_read` (which runs `cargo bench -p oxcover-rosbag --bench read`) on {}. The bundled `turtlebot3_world` map (384x384) read from its PGM (the reference of the same run), and as the one OccupancyGrid of a bag that also holds 10,000 messages of 256 bytes on two other topics: in MCAP storage (zstd chunks of 768 KiB, as rosbag2 records them) and in sqlite3 storage (rosbag2's tables and timestamp index). The whole `read_map`: open, find the topic, read the message, decode, classify.\n\n| source | mean ms | / PGM | under twice the PGM |\n|---|---:|---:|---|\n| PGM | {:.3} | 1.00 | |\n",
+        machine(),
+        pgm / 1e6
+    );
+    for (name, label) in [("mcap", "bag, mcap"), ("db3", "bag, sqlite3")] {
+        let ns = t(name)?;
+        md += &format!(
+            "| {label} | {:.3} | {:.2} | {} |\n",
+            ns / 1e6,
+            ns / pgm,
+            under(ns, 2.0 * pgm)
+        );
+    }
+    md += "\nAn MCAP bag is read by its index: the summary, the message index of the chunks holding the topic, then the one chunk holding the map (decompressed whole, so its CRC is checked). An sqlite3 bag has no index on topics: the map's row is found by scanning the messages table (its rows, not their blobs).\n";
+    crate::replace_section(&root.join("docs/benchmarks.md"), "bag_read", &md)?;
+    Ok(())
+}
+
 fn machine() -> String {
     let out = |cmd: &str, args: &[&str]| {
         Command::new(cmd)
@@ -342,10 +365,16 @@ pub fn run(no_run: bool, only: Option<&str>) -> anyhow::Result<()> {
         ("smooth", "oxcover-planners"),
         ("sensor_bcd", "oxcover"),
         ("segmentation", "oxcover-decomp"),
+        ("read", "oxcover-rosbag"),
         ("grid_cover", "oxcover-planners"),
         ("wavefront", "oxcover-distance"),
     ] {
-        if no_run || !want(name) {
+        let wanted = if name == "read" {
+            want("bag_read")
+        } else {
+            want(name)
+        };
+        if no_run || !wanted {
             continue;
         }
         let status = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
@@ -368,6 +397,9 @@ pub fn run(no_run: bool, only: Option<&str>) -> anyhow::Result<()> {
     }
     if want("segmentation") {
         segmentation_section(&root)?;
+    }
+    if want("bag_read") {
+        bag_read_section(&root)?;
     }
     if want("grid_cover") {
         grid_cover_section(&root)?;

@@ -123,7 +123,7 @@ fn rank(name: &str) -> Option<u32> {
         "oxcover-grid" => 0,
         "oxcover-distance" => 1,
         "oxcover-decomp" => 2,
-        "oxcover-robot" | "oxcover-vision" | "oxcover-world" => 3,
+        "oxcover-robot" | "oxcover-vision" | "oxcover-world" | "oxcover-rosbag" => 3,
         "oxcover-planners" => 4,
         "oxcover" => 5,
         "xtask" | "oxcover-py" => 6,

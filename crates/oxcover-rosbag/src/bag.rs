@@ -51,7 +51,7 @@ pub struct TopicInfo {
 pub enum MessageChoice {
     /// The earliest (by log time).
     First,
-    /// The latest: the map as the mapping run left it [default].
+    /// The latest: the map as the mapping run left it (the default).
     #[default]
     Last,
     /// The message at this position, from 0, in log-time order.
@@ -168,48 +168,65 @@ impl Bag {
     /// An unknown topic (listing the bag's), a position past the topic's
     /// last message, a storage file that cannot be read.
     pub fn message(&mut self, topic: &str, choice: MessageChoice) -> Result<Vec<u8>, Error> {
-        let topics = self.topics()?;
-        let Some(info) = topics.iter().find(|t| t.name == topic) else {
+        if !self.kinds()?.iter().any(|(n, _)| n == topic) {
+            let topics = self.topics()?;
             return Err(bad(
                 &self.path,
                 &format!("no topic {topic}; the bag has {}", list(&topics)),
             ));
+        }
+        let found = match choice {
+            MessageChoice::First | MessageChoice::Last => {
+                let last = choice == MessageChoice::Last;
+                let mut found = None;
+                let n = self.files.len();
+                for i in 0..n {
+                    let file = &mut self.files[if last { n - 1 - i } else { i }];
+                    found = match file {
+                        Storage::Mcap(f) => f.end(topic, last)?,
+                        Storage::Sqlite(f) => f.end(topic, last)?,
+                    };
+                    if found.is_some() {
+                        break;
+                    }
+                }
+                found
+            }
+            MessageChoice::Index(k) => {
+                let mut k = k;
+                let mut found = None;
+                for file in &mut self.files {
+                    let count = match file {
+                        Storage::Mcap(f) => f.count(topic)?,
+                        Storage::Sqlite(f) => f.count(topic)?,
+                    };
+                    if k < count {
+                        found = Some(match file {
+                            Storage::Mcap(f) => f.nth(topic, k)?,
+                            Storage::Sqlite(f) => f.nth(topic, k)?,
+                        });
+                        break;
+                    }
+                    k -= count;
+                }
+                found
+            }
         };
-        let k = match choice {
-            MessageChoice::First => 0,
-            MessageChoice::Last => info.count.saturating_sub(1),
-            MessageChoice::Index(k) => k,
-        };
-        if k >= info.count {
-            return Err(bad(
+        found.ok_or_else(|| {
+            let count = self
+                .topics()
+                .ok()
+                .and_then(|t| t.into_iter().find(|t| t.name == topic))
+                .map_or(0, |t| t.count);
+            let k = match choice {
+                MessageChoice::Index(k) => k,
+                MessageChoice::First | MessageChoice::Last => 0,
+            };
+            bad(
                 &self.path,
-                &format!(
-                    "topic {topic} has {} messages, so no message {k} (numbered from 0)",
-                    info.count
-                ),
-            ));
-        }
-        let mut k = k;
-        for file in &mut self.files {
-            let count = match file {
-                Storage::Mcap(f) => f.topics()?,
-                Storage::Sqlite(f) => f.topics()?,
-            }
-            .iter()
-            .find(|t| t.name == topic)
-            .map_or(0, |t| t.count);
-            if k < count {
-                return match file {
-                    Storage::Mcap(f) => f.nth(topic, k),
-                    Storage::Sqlite(f) => f.nth(topic, k),
-                };
-            }
-            k -= count;
-        }
-        Err(bad(
-            &self.path,
-            &format!("topic {topic} has no message {k}"),
-        ))
+                &format!("topic {topic} has {count} messages, so no message {k} (numbered from 0)"),
+            )
+        })
     }
 
     /// The serialized data of every message on `topic`, file by file, each
@@ -242,6 +259,29 @@ impl Bag {
             .sum()
     }
 
+    /// Every topic's name and type, without counting messages (counting
+    /// an sqlite3 bag's messages scans it).
+    fn kinds(&mut self) -> Result<Vec<(String, String)>, Error> {
+        let mut all: Vec<(String, String)> = Vec::new();
+        for file in &mut self.files {
+            let kinds = match file {
+                Storage::Mcap(f) => f
+                    .topics()?
+                    .into_iter()
+                    .map(|t| (t.name, t.type_name))
+                    .collect(),
+                Storage::Sqlite(f) => f.kinds()?,
+            };
+            for k in kinds {
+                if !all.iter().any(|a| a.0 == k.0) {
+                    all.push(k);
+                }
+            }
+        }
+        all.sort();
+        Ok(all)
+    }
+
     /// The occupancy grid topic to read: `topic` where given (it must be
     /// an OccupancyGrid), else the bag's only OccupancyGrid topic.
     ///
@@ -249,48 +289,53 @@ impl Bag {
     /// An unknown topic or one of another type, no OccupancyGrid topic, or
     /// several and none chosen (each listing the bag's topics).
     pub fn map_topic(&mut self, topic: Option<&str>) -> Result<String, Error> {
-        let topics = self.topics()?;
-        let is_grid = |t: &TopicInfo| {
-            t.type_name == types::OCCUPANCY_GRID || t.type_name == "nav_msgs/OccupancyGrid"
-        };
+        let kinds = self.kinds()?;
+        let is_grid = |ty: &str| ty == types::OCCUPANCY_GRID || ty == "nav_msgs/OccupancyGrid";
         if let Some(name) = topic {
-            return match topics.iter().find(|t| t.name == name) {
-                Some(t) if is_grid(t) => Ok(t.name.clone()),
+            return match kinds.iter().find(|t| t.0 == name) {
+                Some(t) if is_grid(&t.1) => Ok(t.0.clone()),
                 Some(t) => Err(bad(
                     &self.path,
                     &format!(
                         "topic {name} is {}, expected a {}",
-                        t.type_name,
+                        t.1,
                         types::OCCUPANCY_GRID
                     ),
                 )),
-                None => Err(bad(
-                    &self.path,
-                    &format!("no topic {name}; the bag has {}", list(&topics)),
-                )),
+                None => {
+                    let topics = self.topics()?;
+                    Err(bad(
+                        &self.path,
+                        &format!("no topic {name}; the bag has {}", list(&topics)),
+                    ))
+                }
             };
         }
-        let grids: Vec<&TopicInfo> = topics.iter().filter(|t| is_grid(t)).collect();
+        let grids: Vec<&str> = kinds
+            .iter()
+            .filter(|t| is_grid(&t.1))
+            .map(|t| t.0.as_str())
+            .collect();
         match grids.as_slice() {
-            [one] => Ok(one.name.clone()),
-            [] => Err(bad(
-                &self.path,
-                &format!(
-                    "no {} topic; the bag has {}",
-                    types::OCCUPANCY_GRID,
-                    list(&topics)
-                ),
-            )),
+            [one] => Ok((*one).to_string()),
+            [] => {
+                let topics = self.topics()?;
+                Err(bad(
+                    &self.path,
+                    &format!(
+                        "no {} topic; the bag has {}",
+                        types::OCCUPANCY_GRID,
+                        list(&topics)
+                    ),
+                ))
+            }
             many => Err(bad(
                 &self.path,
                 &format!(
                     "{} {} topics ({}); pick one with --topic",
                     many.len(),
                     types::OCCUPANCY_GRID,
-                    many.iter()
-                        .map(|t| t.name.as_str())
-                        .collect::<Vec<_>>()
-                        .join(", ")
+                    many.join(", ")
                 ),
             )),
         }

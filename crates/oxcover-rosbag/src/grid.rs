@@ -92,35 +92,32 @@ pub fn from_msg(
             unit: "values (info.width x info.height)",
         });
     }
-    if let Some((i, v)) = msg
-        .data
-        .iter()
-        .enumerate()
-        .find(|(_, v)| **v < -1 || **v > 100)
-    {
+    if let Some(i) = msg.data.iter().position(|&v| !(-1..=100).contains(&v)) {
         return Err(invalid(
             "data",
-            format!("{v} at row {}, column {}", i / w, i % w),
+            format!("{} at row {}, column {}", msg.data[i], i / w, i % w),
             "-1 (unknown) or an occupancy in percent, 0..100",
         ));
     }
-    let classify = |v: i8| {
-        if v < 0 {
-            return Occupancy::Unknown;
-        }
+    // Each value's class, looked up: -1 unknown, 0..100 by the thresholds.
+    let mut class = [Occupancy::Unknown; 256];
+    for v in 0..=100i8 {
         let p = f64::from(v) / 100.0;
-        if p > thresholds.occupied_thresh {
+        class[usize::from(v as u8)] = if p > thresholds.occupied_thresh {
             Occupancy::Occupied
         } else if p < thresholds.free_thresh {
             Occupancy::Free
         } else {
             Occupancy::Unknown
-        }
-    };
+        };
+    }
     // Our rows run top-down, the message's bottom-up.
-    let cells = Grid::from_fn(w, h, |c: Cell| {
-        classify(msg.data[(h - 1 - c.row) * w + c.col])
-    });
+    let mut cells = Vec::with_capacity(w * h);
+    for row in msg.data.chunks_exact(w).rev() {
+        cells.extend(row.iter().map(|&v| class[usize::from(v as u8)]));
+    }
+    let cells = Grid::from_vec(w, h, cells)
+        .ok_or_else(|| invalid("data", "a grid".into(), "width x height values"))?;
     let yaw = q_yaw(q);
     Ok(
         oxcover_grid::OccupancyGrid::new(cells, resolution, Point::new(o.position.x, o.position.y))

@@ -162,8 +162,25 @@ impl McapFile {
         Ok(topics.into_values().collect())
     }
 
+    /// Messages on `topic`.
+    pub(crate) fn count(&mut self, topic: &str) -> Result<u64, Error> {
+        Ok(self
+            .topics()?
+            .into_iter()
+            .find(|t| t.name == topic)
+            .map_or(0, |t| t.count))
+    }
+
+    /// The first or last message of `topic`; `None` where it has none.
+    pub(crate) fn end(&mut self, topic: &str, last: bool) -> Result<Option<Vec<u8>>, Error> {
+        match self.count(topic)? {
+            0 => Ok(None),
+            n => self.nth(topic, if last { n - 1 } else { 0 }).map(Some),
+        }
+    }
+
     /// The data of message `k` (from 0, in log-time order; file order
-    /// among equal times) of `topic`, which has `count` messages.
+    /// among equal times) of `topic`.
     pub(crate) fn nth(&mut self, topic: &str, k: u64) -> Result<Vec<u8>, Error> {
         if self.indexed().is_some() {
             return self.nth_indexed(topic, k);

@@ -144,7 +144,34 @@ pub struct OccupancyGrid {
     /// Size and placement.
     pub info: MapMetaData,
     /// Cells.
+    #[serde(with = "int8_seq")]
     pub data: Vec<i8>,
+}
+
+/// An `int8[]` coded as CDR codes it, a length then the bytes, read and
+/// written whole (serde's sequences go element by element: a 16384² map
+/// would be 2^28 calls).
+mod int8_seq {
+    use serde::{Deserializer, Serializer};
+
+    pub(super) fn serialize<S: Serializer>(v: &[i8], s: S) -> Result<S::Ok, S::Error> {
+        let bytes: Vec<u8> = v.iter().map(|&x| x as u8).collect();
+        s.serialize_bytes(&bytes)
+    }
+
+    pub(super) fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<i8>, D::Error> {
+        struct Visit;
+        impl serde::de::Visitor<'_> for Visit {
+            type Value = Vec<i8>;
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str("an int8 sequence")
+            }
+            fn visit_bytes<E: serde::de::Error>(self, v: &[u8]) -> Result<Vec<i8>, E> {
+                Ok(v.iter().map(|&x| x as i8).collect())
+            }
+        }
+        d.deserialize_bytes(Visit)
+    }
 }
 
 /// `nav_msgs/msg/Path`.

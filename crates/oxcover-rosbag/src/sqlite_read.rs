@@ -35,6 +35,9 @@ impl SqliteFile {
             OpenFlags::SQLITE_OPEN_READ_ONLY | OpenFlags::SQLITE_OPEN_NO_MUTEX,
         )
         .map_err(|e| bad(path, &format!("cannot open the SQLite database: {e}")))?;
+        // Pages mapped rather than read one call at a time: finding one
+        // topic's message walks many rows (rosbag2 indexes time, not topic).
+        let _ = db.pragma_update(None, "mmap_size", 1i64 << 30);
         let me = Self {
             path: path.to_path_buf(),
             db,
@@ -102,6 +105,48 @@ impl SqliteFile {
             .query_map([topic], |row| row.get(0))
             .map_err(|e| self.sql(&e))?;
         rows.collect::<Result<Vec<Vec<u8>>, _>>()
+            .map_err(|e| self.sql(&e))
+    }
+
+    /// Topic names and types (no counts: counting scans every message).
+    pub(crate) fn kinds(&self) -> Result<Vec<(String, String)>, Error> {
+        let mut stmt = self
+            .db
+            .prepare("SELECT name, type FROM topics ORDER BY name")
+            .map_err(|e| self.sql(&e))?;
+        let rows = stmt
+            .query_map([], |row| Ok((row.get(0)?, row.get(1)?)))
+            .map_err(|e| self.sql(&e))?;
+        rows.collect::<Result<Vec<(String, String)>, _>>()
+            .map_err(|e| self.sql(&e))
+    }
+
+    /// Messages on `topic`.
+    pub(crate) fn count(&self, topic: &str) -> Result<u64, Error> {
+        self.db
+            .query_row(
+                "SELECT COUNT(*) FROM messages WHERE topic_id IN (SELECT id FROM topics WHERE name = ?1)",
+                [topic],
+                |row| row.get::<_, i64>(0),
+            )
+            .map(|n| n.max(0) as u64)
+            .map_err(|e| self.sql(&e))
+    }
+
+    /// The first or last message of `topic` by timestamp (then row id),
+    /// found through rosbag2's timestamp index; `None` where it has none.
+    pub(crate) fn end(&self, topic: &str, last: bool) -> Result<Option<Vec<u8>>, Error> {
+        let order = if last { "DESC" } else { "ASC" };
+        self.db
+            .query_row(
+                &format!(
+                    "SELECT data FROM messages NOT INDEXED WHERE topic_id IN (SELECT id FROM topics WHERE name = ?1) \
+                     ORDER BY timestamp {order}, id {order} LIMIT 1"
+                ),
+                [topic],
+                |row| row.get(0),
+            )
+            .optional()
             .map_err(|e| self.sql(&e))
     }
 
