@@ -161,3 +161,13 @@ def test_python_reads_and_writes_bags_as_the_command_line(cli, tmp_path, rosbags
         oxcover.load_map(str(rosbags_bags["sqlite3"]), message=4)
     with pytest.raises(ValueError, match="expected first, last or a message number"):
         oxcover.load_map(str(rosbags_bags["sqlite3"]), message="newest")
+
+
+def test_the_python_readme_bag_example_runs(tmp_path, monkeypatch):
+    text = (ROOT / "crates" / "oxcover-py" / "README.md").read_text()
+    blocks = [b.split("```", 1)[0] for b in text.split("```python\n")[1:]]
+    (code,) = [b for b in blocks if "bag=" in b]
+    monkeypatch.chdir(tmp_path)
+    exec(code.replace('"fixtures/', f'"{ROOT}/fixtures/'), {"oxcover": oxcover})
+    topics = read_with_rosbags(tmp_path / "plan.mcap")
+    assert sorted(topics) == ["/coverage_path", "/map", "/rooms"]

@@ -27,6 +27,7 @@ pub mod markers;
 mod mcap_read;
 pub mod msgs;
 mod sqlite_read;
+mod storage;
 pub mod write;
 
 pub use bag::{Bag, MessageChoice, TopicInfo, is_bag, read_map};

@@ -3,7 +3,7 @@
 //! their labels, and polylines for zones, keep-out areas and virtual walls.
 //! All in frame `map`, lasting forever.
 
-use oxcover_grid::{Cell, Grid, MapFrame};
+use oxcover_grid::{Cell, Grid, MapFrame, Point as MapPoint};
 
 use crate::msgs::{ColorRgba, Header, Marker, MarkerArray, Point, Vector3};
 
@@ -38,27 +38,28 @@ fn base(ns: &str, id: i32, kind: i32, width: f64, rgb: [u8; 3]) -> Marker {
 
 /// A `LINE_STRIP` through `points` (metres, map frame), `width` metres wide.
 #[must_use]
-pub fn polyline(ns: &str, id: i32, points: &[(f64, f64)], width: f64, rgb: [u8; 3]) -> Marker {
+pub fn polyline(ns: &str, id: i32, points: &[MapPoint], width: f64, rgb: [u8; 3]) -> Marker {
     let mut m = base(ns, id, Marker::LINE_STRIP, width, rgb);
     m.points = points
         .iter()
-        .map(|&(x, y)| Point { x, y, z: 0.0 })
+        .map(|p| Point {
+            x: p.x,
+            y: p.y,
+            z: 0.0,
+        })
         .collect();
     m
 }
 
-/// A `TEXT_VIEW_FACING` marker showing `text` at (x, y), `height` metres tall.
+/// A `TEXT_VIEW_FACING` marker showing `text` at `at`, `height` metres tall.
 #[must_use]
-pub fn text(
-    ns: &str,
-    id: i32,
-    (x, y): (f64, f64),
-    text: &str,
-    height: f64,
-    rgb: [u8; 3],
-) -> Marker {
+pub fn text(ns: &str, id: i32, at: MapPoint, text: &str, height: f64, rgb: [u8; 3]) -> Marker {
     let mut m = base(ns, id, Marker::TEXT_VIEW_FACING, height, rgb);
-    m.pose.position = Point { x, y, z: 0.0 };
+    m.pose.position = Point {
+        x: at.x,
+        y: at.y,
+        z: 0.0,
+    };
     m.text = text.into();
     m
 }
@@ -68,7 +69,7 @@ pub fn text(
 /// `rooms`, id = label) and a text marker with the label at `anchors[label]`
 /// (namespace `room_labels`).
 #[must_use]
-pub fn rooms(labels: &Grid<u32>, frame: &MapFrame, anchors: &[(u32, (f64, f64))]) -> MarkerArray {
+pub fn rooms(labels: &Grid<u32>, frame: &MapFrame, anchors: &[(u32, MapPoint)]) -> MarkerArray {
     let n = labels.as_slice().iter().copied().max().unwrap_or(0) as usize;
     let mut edges: Vec<Vec<Point>> = vec![Vec::new(); n + 1];
     let (w, h) = (labels.width(), labels.height());

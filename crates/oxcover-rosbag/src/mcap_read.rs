@@ -16,7 +16,7 @@ use mcap::records::{self, Record, op};
 use mcap::sans_io::linear_reader::{LinearReadEvent, LinearReaderOptions};
 use mcap::sans_io::summary_reader::{SummaryReadEvent, SummaryReader, SummaryReaderOptions};
 
-use crate::bag::{TopicInfo, bad};
+use crate::storage::{TopicInfo, bad};
 use oxcover_grid::Error;
 
 /// How an MCAP file begins (and ends).

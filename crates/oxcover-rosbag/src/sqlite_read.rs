@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use rusqlite::{Connection, OpenFlags, OptionalExtension as _};
 
-use crate::bag::{TopicInfo, bad};
+use crate::storage::{TopicInfo, bad};
 use oxcover_grid::Error;
 
 /// How an SQLite 3 database begins.
@@ -23,7 +23,7 @@ pub(crate) struct SqliteFile {
 impl SqliteFile {
     /// Opens `path` read-only, after checking its first bytes are SQLite's.
     pub(crate) fn open(path: &Path) -> Result<Self, Error> {
-        let head = crate::bag::head(path, MAGIC.len())?;
+        let head = crate::storage::head(path, MAGIC.len())?;
         if head != MAGIC {
             return Err(bad(
                 path,

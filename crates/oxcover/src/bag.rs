@@ -88,15 +88,10 @@ pub fn label_markers(map: &OccupancyGrid, labels: &Grid<u32>) -> MarkerArray {
             }
         }
     }
-    let anchors: Vec<(u32, (f64, f64))> = best
+    let anchors: Vec<(u32, Point)> = best
         .iter()
         .enumerate()
-        .filter_map(|(l, b)| {
-            b.map(|(_, c)| {
-                let p = frame.cell_center(c);
-                (l as u32, (p.x, p.y))
-            })
-        })
+        .filter_map(|(l, b)| b.map(|(_, c)| (l as u32, frame.cell_center(c))))
         .collect();
     markers::rooms(labels, frame, &anchors)
 }
@@ -109,8 +104,9 @@ pub fn target_markers(targets: &Targets, resolution: f64) -> Option<MarkerArray>
     const ZONE: [u8; 3] = [44, 160, 44];
     const KEEP_OUT: [u8; 3] = [214, 39, 40];
     let mut out = Vec::new();
-    let ring =
-        |r: &geo::LineString<f64>| -> Vec<(f64, f64)> { r.coords().map(|c| (c.x, c.y)).collect() };
+    let ring = |r: &geo::LineString<f64>| -> Vec<Point> {
+        r.coords().map(|c| Point::new(c.x, c.y)).collect()
+    };
     let width = resolution;
     if let Some(z) = &targets.zones {
         for p in &z.polygons {
@@ -127,10 +123,10 @@ pub fn target_markers(targets: &Targets, resolution: f64) -> Option<MarkerArray>
     }
     if let Some(s) = targets.spot {
         let n = 48;
-        let circle: Vec<(f64, f64)> = (0..=n)
+        let circle: Vec<Point> = (0..=n)
             .map(|i| {
                 let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
-                (
+                Point::new(
                     s.centre.x + s.radius * a.cos(),
                     s.centre.y + s.radius * a.sin(),
                 )
