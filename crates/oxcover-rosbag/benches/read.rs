@@ -13,16 +13,19 @@
     reason = "criterion_group! generates an undocumented pub fn"
 )]
 
-use std::collections::BTreeMap;
 use std::hint::black_box;
-use std::io::Cursor;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use oxcover_grid::io::{ReadOptions, Thresholds, read_map};
 use oxcover_rosbag::msgs::{Time, types};
 use oxcover_rosbag::{MessageChoice, cdr, grid};
+
+#[path = "../tests/support/mod.rs"]
+mod support;
+
+use support::{Msg, write_db3, write_mcap};
 
 const OTHER: usize = 10_000;
 
@@ -32,7 +35,7 @@ fn root() -> PathBuf {
 
 /// The messages: 10,000 on /scan and /odom (alternately, 256 bytes each,
 /// every 10 ms) with the map at the middle.
-fn messages(map: &[u8]) -> Vec<(&'static str, &'static str, u64, Vec<u8>)> {
+fn messages(map: &[u8]) -> Vec<Msg> {
     let mut out = Vec::with_capacity(OTHER + 1);
     for i in 0..OTHER {
         let (topic, ty) = if i % 2 == 0 {
@@ -55,71 +58,6 @@ fn messages(map: &[u8]) -> Vec<(&'static str, &'static str, u64, Vec<u8>)> {
     out
 }
 
-fn write_mcap(path: &Path, msgs: &[(&str, &str, u64, Vec<u8>)]) {
-    // rosbag2's MCAP storage writes with libmcap's defaults: zstd chunks of
-    // 768 KiB.
-    let mut w = mcap::WriteOptions::new()
-        .profile("ros2")
-        .chunk_size(Some(768 * 1024))
-        .create(Cursor::new(Vec::new()))
-        .expect("writer");
-    let mut channels: BTreeMap<&str, u16> = BTreeMap::new();
-    for (topic, ty, t, data) in msgs {
-        let id = match channels.get(topic) {
-            Some(&id) => id,
-            None => {
-                let s = w.add_schema(ty, "ros2msg", b"").expect("schema");
-                let id = w
-                    .add_channel(s, topic, "cdr", &BTreeMap::new())
-                    .expect("channel");
-                channels.insert(topic, id);
-                id
-            }
-        };
-        let header = mcap::records::MessageHeader {
-            channel_id: id,
-            sequence: 0,
-            log_time: *t,
-            publish_time: *t,
-        };
-        w.write_to_known_channel(&header, data).expect("message");
-    }
-    w.finish().expect("finish");
-    std::fs::write(path, w.into_inner().into_inner()).expect("write");
-}
-
-fn write_db3(path: &Path, msgs: &[(&str, &str, u64, Vec<u8>)]) {
-    let _ = std::fs::remove_file(path);
-    let mut db = rusqlite::Connection::open(path).expect("db");
-    db.execute_batch(
-        "CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL, \
-         serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL); \
-         CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, \
-         timestamp INTEGER NOT NULL, data BLOB NOT NULL); \
-         CREATE INDEX timestamp_idx ON messages (timestamp ASC);",
-    )
-    .expect("schema");
-    let tx = db.transaction().expect("tx");
-    let mut ids: BTreeMap<&str, i64> = BTreeMap::new();
-    for (topic, ty, t, data) in msgs {
-        let n = ids.len() as i64 + 1;
-        let id = *ids.entry(topic).or_insert_with(|| {
-            tx.execute(
-                "INSERT INTO topics VALUES (?1, ?2, ?3, 'cdr', '')",
-                rusqlite::params![n, topic, ty],
-            )
-            .expect("topic");
-            n
-        });
-        tx.execute(
-            "INSERT INTO messages (topic_id, timestamp, data) VALUES (?1, ?2, ?3)",
-            rusqlite::params![id, *t as i64, data],
-        )
-        .expect("message");
-    }
-    tx.commit().expect("commit");
-}
-
 fn bench(c: &mut Criterion) {
     let pgm = root().join("fixtures/maps/nav2/turtlebot3_world.pgm");
     let yaml = root().join("fixtures/maps/nav2/turtlebot3_world.yaml");
@@ -129,7 +67,12 @@ fn bench(c: &mut Criterion) {
     let dir = std::env::temp_dir().join(format!("oxcover-bench-bags-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("dir");
     let (mcap, db3) = (dir.join("bag.mcap"), dir.join("bag.db3"));
-    write_mcap(&mcap, &msgs);
+    // rosbag2's MCAP storage writes with libmcap's defaults: zstd chunks of
+    // 768 KiB.
+    let options = mcap::WriteOptions::new()
+        .profile("ros2")
+        .chunk_size(Some(768 * 1024));
+    write_mcap(&mcap, &msgs, options);
     write_db3(&db3, &msgs);
     let mut g = c.benchmark_group("bag_read");
     g.sample_size(30).measurement_time(Duration::from_secs(4));

@@ -342,7 +342,7 @@ impl McapFile {
                 "a chunk index does not point to a message index",
             ));
         }
-        let body = self.read_at(offset + 9, len)?;
+        let body = self.read_at(offset.saturating_add(9), len)?;
         match mcap::parse_record(op::MESSAGE_INDEX, &body) {
             Ok(Record::MessageIndex(mi)) => Ok(mi),
             Ok(_) => Err(bad(

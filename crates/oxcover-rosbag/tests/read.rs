@@ -3,15 +3,16 @@
 //! indexed MCAP, the same answer from an unindexed one and from sqlite3,
 //! and one clear error for every kind of bad bag.
 
-use std::collections::BTreeMap;
-use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
-use mcap::records::MessageHeader;
 use oxcover_grid::io::{Thresholds, parse_ascii};
 use oxcover_grid::{Occupancy, OccupancyGrid};
-use oxcover_rosbag::msgs::{Time, schema_text, types};
+use oxcover_rosbag::msgs::{Time, types};
 use oxcover_rosbag::{Bag, MessageChoice, cdr, grid, read_map};
+
+mod support;
+
+use support::{Msg, write_db3, write_mcap};
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("oxcover-rosbag-{}-{name}", std::process::id()));
@@ -30,9 +31,6 @@ fn map(first: char) -> OccupancyGrid {
 fn map_data(first: char) -> Vec<u8> {
     cdr::encode(&grid::to_msg(&map(first), Time::default())).expect("encode")
 }
-
-/// One message: topic, type, log time (ns), data.
-type Msg = (&'static str, &'static str, u64, Vec<u8>);
 
 /// The messages of a bag: `chatter` small messages on `/chatter`, and maps
 /// on `/map` at 1 s (`#` first), 2 s (`.` first) and 3 s (`?` first), the
@@ -55,63 +53,26 @@ fn messages(chatter: u64) -> Vec<Msg> {
     out
 }
 
-fn write_mcap(path: &Path, msgs: &[Msg], options: mcap::WriteOptions) {
-    let mut w = options.create(Cursor::new(Vec::new())).expect("writer");
-    let mut channels: BTreeMap<&str, u16> = BTreeMap::new();
-    for (topic, ty, t, data) in msgs {
-        let id = match channels.get(topic) {
-            Some(&id) => id,
-            None => {
-                let schema = schema_text(ty).unwrap_or_else(|| "string data\n".into());
-                let s = w
-                    .add_schema(ty, "ros2msg", schema.as_bytes())
-                    .expect("schema");
-                let id = w
-                    .add_channel(s, topic, "cdr", &BTreeMap::new())
-                    .expect("channel");
-                channels.insert(topic, id);
-                id
-            }
-        };
-        let header = MessageHeader {
-            channel_id: id,
-            sequence: 0,
-            log_time: *t,
-            publish_time: *t,
-        };
-        w.write_to_known_channel(&header, data).expect("message");
-    }
-    w.finish().expect("finish");
-    std::fs::write(path, w.into_inner().into_inner()).expect("write");
+/// The error of reading the map of the bag at `path`, which must fail.
+fn map_error(path: &Path) -> String {
+    read_map(
+        path,
+        None,
+        MessageChoice::Last,
+        &Thresholds::default(),
+        1 << 20,
+    )
+    .expect_err("a bad bag")
+    .to_string()
 }
 
-fn write_db3(path: &Path, msgs: &[Msg]) {
-    let db = rusqlite::Connection::open(path).expect("db");
-    db.execute_batch(
-        "CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL, \
-         serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL); \
-         CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, \
-         timestamp INTEGER NOT NULL, data BLOB NOT NULL); \
-         CREATE INDEX timestamp_idx ON messages (timestamp ASC);",
-    )
-    .expect("schema");
-    let mut ids: BTreeMap<&str, i64> = BTreeMap::new();
-    for (topic, ty, t, data) in msgs {
-        let n = ids.len() as i64 + 1;
-        let id = *ids.entry(topic).or_insert_with(|| {
-            db.execute(
-                "INSERT INTO topics VALUES (?1, ?2, ?3, 'cdr', '')",
-                rusqlite::params![n, topic, ty],
-            )
-            .expect("topic");
-            n
-        });
-        db.execute(
-            "INSERT INTO messages (topic_id, timestamp, data) VALUES (?1, ?2, ?3)",
-            rusqlite::params![id, *t as i64, data],
-        )
-        .expect("message");
-    }
+/// A bag holding one message, `data`, on `/map`.
+fn one_map_bag(path: &Path, data: Vec<u8>) {
+    write_mcap(
+        path,
+        &[("/map", types::OCCUPANCY_GRID, 0, data)],
+        mcap::WriteOptions::new(),
+    );
 }
 
 fn first_cell(path: &Path, choice: MessageChoice) -> Occupancy {
@@ -324,29 +285,13 @@ fn bad_bags_are_one_clear_line() {
         .collect();
     let p = dir.join("nomap.mcap");
     write_mcap(&p, &chatter, mcap::WriteOptions::new());
-    let e = read_map(
-        &p,
-        None,
-        MessageChoice::Last,
-        &Thresholds::default(),
-        1 << 20,
-    )
-    .expect_err("no map")
-    .to_string();
+    let e = map_error(&p);
     assert!(e.contains("no nav_msgs/msg/OccupancyGrid topic; the bag has /chatter (std_msgs/msg/String, 5 messages)"), "{e}");
     let mut two = messages(5);
     two.push(("/map2", types::OCCUPANCY_GRID, 5, map_data('.')));
     let p = dir.join("two.mcap");
     write_mcap(&p, &two, mcap::WriteOptions::new());
-    let e = read_map(
-        &p,
-        None,
-        MessageChoice::Last,
-        &Thresholds::default(),
-        1 << 20,
-    )
-    .expect_err("two")
-    .to_string();
+    let e = map_error(&p);
     assert!(
         e.contains("2 nav_msgs/msg/OccupancyGrid topics (/map, /map2); pick one with --topic"),
         "{e}"
@@ -355,65 +300,19 @@ fn bad_bags_are_one_clear_line() {
     let mut msg = grid::to_msg(&map('.'), Time::default());
     msg.data.pop();
     let p = dir.join("short.mcap");
-    write_mcap(
-        &p,
-        &[(
-            "/map",
-            types::OCCUPANCY_GRID,
-            0,
-            cdr::encode(&msg).expect("e"),
-        )],
-        mcap::WriteOptions::new(),
-    );
-    let e = read_map(
-        &p,
-        None,
-        MessageChoice::Last,
-        &Thresholds::default(),
-        1 << 20,
-    )
-    .expect_err("short")
-    .to_string();
+    one_map_bag(&p, cdr::encode(&msg).expect("e"));
+    let e = map_error(&p);
     assert!(e.contains("header says 3x2, which needs 6 values"), "{e}");
     let mut msg = grid::to_msg(&map('.'), Time::default());
     msg.info.resolution = f32::NAN;
     let p = dir.join("nan.mcap");
-    write_mcap(
-        &p,
-        &[(
-            "/map",
-            types::OCCUPANCY_GRID,
-            0,
-            cdr::encode(&msg).expect("e"),
-        )],
-        mcap::WriteOptions::new(),
-    );
-    let e = read_map(
-        &p,
-        None,
-        MessageChoice::Last,
-        &Thresholds::default(),
-        1 << 20,
-    )
-    .expect_err("nan")
-    .to_string();
+    one_map_bag(&p, cdr::encode(&msg).expect("e"));
+    let e = map_error(&p);
     assert!(e.contains("info.resolution") && e.contains("NaN"), "{e}");
     // A message that is not an OccupancyGrid at all.
     let p = dir.join("garbage.mcap");
-    write_mcap(
-        &p,
-        &[("/map", types::OCCUPANCY_GRID, 0, vec![0, 1, 0, 0, 1, 2])],
-        mcap::WriteOptions::new(),
-    );
-    let e = read_map(
-        &p,
-        None,
-        MessageChoice::Last,
-        &Thresholds::default(),
-        1 << 20,
-    )
-    .expect_err("garbage")
-    .to_string();
+    one_map_bag(&p, vec![0, 1, 0, 0, 1, 2]);
+    let e = map_error(&p);
     assert!(e.contains("/map: not a nav_msgs/msg/OccupancyGrid"), "{e}");
     // A folder without metadata, and metadata naming a file outside it.
     let folder = dir.join("folder");

@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use oxcover_grid::{Cell, Grid, OccupancyGrid, Point};
+use oxcover_grid::{Cell, OccupancyGrid, Point};
 use oxcover_planners::TimeModel;
 use oxcover_rosbag::msgs::MarkerArray;
 use oxcover_rosbag::{OdomSample, PlanBag, StampedPose, markers};
@@ -13,8 +13,9 @@ use oxcover_rosbag::{OdomSample, PlanBag, StampedPose, markers};
 use crate::error::{Error, Result};
 use crate::metrics::arrival_times;
 use crate::render::{LegendMark, Overlay};
-use crate::rooms::{SegmentOptions, segment};
+use crate::rooms::{SegmentOptions, report, segment};
 use crate::targets::Targets;
+use oxcover_decomp::Rooms;
 
 /// The poses of `points`, each oriented along the path (towards the next
 /// waypoint that is elsewhere; the last along the way it came) and stamped
@@ -56,32 +57,27 @@ pub fn path_poses(points: &[Point], resolution: f64, time: &TimeModel) -> Vec<St
 /// # Errors
 /// As [`segment`] (not expected with the defaults).
 pub fn room_markers(map: &OccupancyGrid) -> Result<MarkerArray> {
-    let rooms = segment(map, &SegmentOptions::default())?;
-    Ok(label_markers(map, &rooms.labels))
+    let options = SegmentOptions::default();
+    let rooms = segment(map, &options)?;
+    Ok(label_markers(map, &rooms, &options))
 }
 
-/// Room outlines and labels of a label grid (0 no room, 1..=n rooms), each
-/// label at its room's cell nearest the room's centroid.
+/// Room outlines and labels of `rooms` (segmented with `options`), each
+/// label at its room's cell nearest the room's centroid (the centroid
+/// `oxcover segment` reports, which may lie outside an L-shaped room).
 #[must_use]
-pub fn label_markers(map: &OccupancyGrid, labels: &Grid<u32>) -> MarkerArray {
+pub fn label_markers(map: &OccupancyGrid, rooms: &Rooms, options: &SegmentOptions) -> MarkerArray {
     let frame = map.frame();
-    let n = labels.as_slice().iter().copied().max().unwrap_or(0) as usize;
-    let mut sums = vec![(0.0, 0.0, 0usize); n + 1];
+    let labels = &rooms.labels;
+    let centroids: Vec<Point> = report(map, rooms, options)
+        .rooms
+        .iter()
+        .map(|r| Point::new(r.centroid[0], r.centroid[1]))
+        .collect();
+    let mut best: Vec<Option<(f64, Cell)>> = vec![None; centroids.len() + 1];
     for c in labels.cells() {
         let l = labels[c] as usize;
-        if l > 0 {
-            let p = frame.cell_center(c);
-            sums[l].0 += p.x;
-            sums[l].1 += p.y;
-            sums[l].2 += 1;
-        }
-    }
-    let mut best: Vec<Option<(f64, Cell)>> = vec![None; n + 1];
-    for c in labels.cells() {
-        let l = labels[c] as usize;
-        if l > 0 {
-            let (sx, sy, k) = sums[l];
-            let centroid = Point::new(sx / k as f64, sy / k as f64);
+        if let Some(centroid) = l.checked_sub(1).and_then(|i| centroids.get(i)) {
             let d = (frame.cell_center(c) - centroid).norm();
             if best[l].is_none_or(|(b, _)| d < b) {
                 best[l] = Some((d, c));
@@ -103,65 +99,40 @@ pub fn label_markers(map: &OccupancyGrid, labels: &Grid<u32>) -> MarkerArray {
 pub fn target_markers(targets: &Targets, resolution: f64) -> Option<MarkerArray> {
     const ZONE: [u8; 3] = [44, 160, 44];
     const KEEP_OUT: [u8; 3] = [214, 39, 40];
-    let mut out = Vec::new();
     let ring = |r: &geo::LineString<f64>| -> Vec<Point> {
         r.coords().map(|c| Point::new(c.x, c.y)).collect()
     };
-    let width = resolution;
-    if let Some(z) = &targets.zones {
-        for p in &z.polygons {
-            for r in std::iter::once(p.exterior()).chain(p.interiors()) {
-                out.push(markers::polyline(
-                    "zones",
-                    out.len() as i32,
-                    &ring(r),
-                    width,
-                    ZONE,
-                ));
-            }
-        }
-    }
-    if let Some(s) = targets.spot {
-        let n = 48;
-        let circle: Vec<Point> = (0..=n)
-            .map(|i| {
-                let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
-                Point::new(
-                    s.centre.x + s.radius * a.cos(),
-                    s.centre.y + s.radius * a.sin(),
-                )
-            })
-            .collect();
-        out.push(markers::polyline(
-            "zones",
-            out.len() as i32,
-            &circle,
-            width,
-            ZONE,
-        ));
-    }
-    if let Some(k) = &targets.keep_out {
-        for p in &k.polygons {
-            for r in std::iter::once(p.exterior()).chain(p.interiors()) {
-                out.push(markers::polyline(
-                    "keep_out",
-                    out.len() as i32,
-                    &ring(r),
-                    width,
-                    KEEP_OUT,
-                ));
-            }
-        }
-        for l in &k.lines {
-            out.push(markers::polyline(
-                "virtual_walls",
-                out.len() as i32,
-                &ring(l),
-                2.0 * width,
-                KEEP_OUT,
-            ));
-        }
-    }
+    // Every ring of the areas' polygons, holes included.
+    let rings = |areas: Option<&crate::targets::Areas>| -> Vec<Vec<Point>> {
+        areas.map_or_else(Vec::new, |a| {
+            a.polygons
+                .iter()
+                .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()))
+                .map(ring)
+                .collect()
+        })
+    };
+    let zones = rings(targets.zones.as_ref())
+        .into_iter()
+        .chain(targets.spot.map(|s| s.outline()));
+    let walls = targets
+        .keep_out
+        .iter()
+        .flat_map(|k| k.lines.iter().map(ring));
+    let lines = zones
+        .map(|z| ("zones", z, 1.0, ZONE))
+        .chain(
+            rings(targets.keep_out.as_ref())
+                .into_iter()
+                .map(|k| ("keep_out", k, 1.0, KEEP_OUT)),
+        )
+        .chain(walls.map(|w| ("virtual_walls", w, 2.0, KEEP_OUT)));
+    let out: Vec<_> = lines
+        .enumerate()
+        .map(|(id, (ns, points, width, rgb))| {
+            markers::polyline(ns, id as i32, &points, width * resolution, rgb)
+        })
+        .collect();
     (!out.is_empty()).then_some(MarkerArray { markers: out })
 }
 

@@ -6,7 +6,7 @@
 
 use std::collections::BTreeMap;
 use std::io::Cursor;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
 use oxcover::rosbag::msgs::{self, Time, types};
@@ -14,15 +14,7 @@ use oxcover::rosbag::{Bag, MessageChoice, cdr, grid};
 
 mod common;
 
-use common::{bin, run, scratch};
-
-fn root(rel: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../..")
-        .join(rel)
-        .display()
-        .to_string()
-}
+use common::{bin, root, run, scratch};
 
 fn turtlebot() -> String {
     root("fixtures/maps/nav2/turtlebot3_world.yaml")

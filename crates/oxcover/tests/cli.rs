@@ -6,14 +6,10 @@ use std::process::Command;
 
 mod common;
 
-use common::{bin, run, scratch};
+use common::{bin, root, run, scratch};
 
 fn fixture(rel: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../fixtures/maps")
-        .join(rel)
-        .display()
-        .to_string()
+    root(&format!("fixtures/maps/{rel}"))
 }
 
 fn json(text: &str) -> serde_json::Value {

@@ -9,15 +9,7 @@ use std::path::PathBuf;
 
 mod common;
 
-use common::{run, scratch};
-
-fn root(rel: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../..")
-        .join(rel)
-        .display()
-        .to_string()
-}
+use common::{root, run, scratch};
 
 /// The value of a row of the printed table.
 fn row(table: &str, key: &str) -> f64 {

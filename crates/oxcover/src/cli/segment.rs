@@ -126,7 +126,7 @@ pub(crate) fn cmd_segment(a: &SegmentArgs) -> Result<()> {
     }
     if let Some(f) = &a.bag {
         let extras = oxcover::bag::BagExtras {
-            rooms: Some(oxcover::bag::label_markers(&map, &rooms.labels)),
+            rooms: Some(oxcover::bag::label_markers(&map, &rooms, &options)),
             ..oxcover::bag::BagExtras::default()
         };
         let time = oxcover::planners::TimeModel::default();

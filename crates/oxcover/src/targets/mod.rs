@@ -327,6 +327,19 @@ impl Spot {
             })
         }
     }
+
+    /// The spot's circle as a closed polyline of 48 segments, for pictures
+    /// and markers.
+    #[must_use]
+    pub fn outline(&self) -> Vec<Point> {
+        let n = 48;
+        (0..=n)
+            .map(|i| {
+                let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+                self.centre + self.radius * oxcover_grid::Vector::new(a.cos(), a.sin())
+            })
+            .collect()
+    }
 }
 
 /// Where a resumed plan starts: the done path's last point when the robot

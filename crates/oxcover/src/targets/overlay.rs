@@ -86,14 +86,7 @@ pub fn target_overlay(targets: &Targets) -> Overlay {
         zone = true;
     }
     if let Some(s) = targets.spot {
-        let n = 48;
-        let ring: Vec<Point> = (0..=n)
-            .map(|i| {
-                let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
-                s.centre + s.radius * oxcover_grid::Vector::new(a.cos(), a.sin())
-            })
-            .collect();
-        for w in ring.windows(2) {
+        for w in s.outline().windows(2) {
             o.lines.push((w[0], w[1], ZONE));
         }
         zone = true;

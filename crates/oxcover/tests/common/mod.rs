@@ -1,5 +1,6 @@
 //! Helpers the command-line test files share: the binary, a scratch
-//! folder per test process, and a command that must succeed.
+//! folder per test process, paths from the repository root, and a
+//! command that must succeed.
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -7,6 +8,15 @@ use std::process::Command;
 /// The `oxcover` binary under test.
 pub(crate) fn bin() -> &'static str {
     env!("CARGO_BIN_EXE_oxcover")
+}
+
+/// `rel` (a path from the repository root) as an absolute path.
+pub(crate) fn root(rel: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .join(rel)
+        .display()
+        .to_string()
 }
 
 /// A fresh folder for this process's files named `name`.
