@@ -231,34 +231,79 @@ fn doorways_in(free: &Grid<bool>, params: &RoomParams) -> Rooms {
 /// that stand alone (not touching the grid's edge), under `most` cells,
 /// at least `thick` cells across both ways and filling half their bounding
 /// box at least (a block, not a scanned wall's broken piece).
+///
+/// Every island has a cell beside a free one, so only those start a
+/// search, and a search gives up (the island is no furniture) at `most`
+/// cells, at the grid's edge or at a cell an earlier search gave up on:
+/// the large obstacles (the walls, the world outside) are never filled
+/// whole.
 fn furniture(blocked: &Grid<bool>, most: f64, thick: usize) -> Grid<bool> {
-    let islands = components4(blocked);
+    /// A cell's state: not yet searched, in no furniture, furniture.
+    const NEW: u8 = 0;
+    const NONE: u8 = 1;
+    const BLOCK: u8 = 2;
     let (w, h) = (blocked.width(), blocked.height());
-    let n = islands.sizes.len() + 1;
-    // Each island's bounding box (rows, columns) and whether it touches
-    // the edge.
-    let mut boxes = vec![(usize::MAX, 0, usize::MAX, 0, false); n];
-    for c in blocked.true_cells() {
-        let b = &mut boxes[islands.labels[c] as usize];
-        *b = (
-            b.0.min(c.row),
-            b.1.max(c.row + 1),
-            b.2.min(c.col),
-            b.3.max(c.col + 1),
-            b.4 || c.row == 0 || c.col == 0 || c.row + 1 == h || c.col + 1 == w,
-        );
-    }
-    let keep: Vec<bool> = (0..n)
-        .map(|l| {
-            let Some(&size) = l.checked_sub(1).and_then(|i| islands.sizes.get(i)) else {
-                return false;
-            };
-            let (r0, r1, c0, c1, edge) = boxes[l];
+    let b = blocked.as_slice();
+    let mut state = vec![NEW; b.len()];
+    let (mut island, mut stack) = (Vec::new(), Vec::new());
+    let beside_free = |i: usize| {
+        let (r, c) = (i / w, i % w);
+        (c > 0 && !b[i - 1])
+            || (c + 1 < w && !b[i + 1])
+            || (r > 0 && !b[i - w])
+            || (r + 1 < h && !b[i + w])
+    };
+    for start in 0..b.len() {
+        if !b[start] || state[start] != NEW || !beside_free(start) {
+            continue;
+        }
+        island.clear();
+        stack.clear();
+        stack.push(start);
+        state[start] = BLOCK;
+        let mut alone = true;
+        while let Some(i) = stack.pop() {
+            island.push(i);
+            let (r, c) = (i / w, i % w);
+            if r == 0 || c == 0 || r + 1 == h || c + 1 == w || island.len() as f64 >= most {
+                alone = false;
+                break;
+            }
+            for n in [i - 1, i + 1, i - w, i + w] {
+                if b[n] {
+                    match state[n] {
+                        NEW => {
+                            state[n] = BLOCK;
+                            stack.push(n);
+                        }
+                        NONE => {
+                            alone = false;
+                        }
+                        _ => {}
+                    }
+                }
+            }
+            if !alone {
+                break;
+            }
+        }
+        let keep = alone && {
+            let (mut r0, mut r1, mut c0, mut c1) = (usize::MAX, 0, usize::MAX, 0);
+            for &i in &island {
+                let (r, c) = (i / w, i % w);
+                (r0, r1, c0, c1) = (r0.min(r), r1.max(r + 1), c0.min(c), c1.max(c + 1));
+            }
             let (bh, bw) = (r1 - r0, c1 - c0);
-            !edge && (size as f64) < most && bh.min(bw) >= thick && 2 * size >= bh * bw
-        })
-        .collect();
-    islands.labels.map(|&l| keep[l as usize])
+            bh.min(bw) >= thick && 2 * island.len() >= bh * bw
+        };
+        if !keep {
+            for &i in island.iter().chain(&stack) {
+                state[i] = NONE;
+            }
+        }
+    }
+    Grid::from_vec(w, h, state.into_iter().map(|s| s == BLOCK).collect())
+        .unwrap_or_else(|| Grid::new(w, h, false))
 }
 
 /// `labels` renumbered top-left first: rooms of at least `min_cells` in
