@@ -18,6 +18,7 @@
 mod load;
 mod outputs;
 mod region;
+mod remainder;
 mod request;
 mod rooms;
 #[cfg(test)]
@@ -113,7 +114,18 @@ fn plan_problem(
 ) -> Result<PlanOutcome> {
     let targets = &request.targets;
     if let Some(target) = targets.required(map, problem.cells())? {
-        let mut outcome = plan_target(problem, &target, rooms.as_ref(), request, t0)?;
+        let whole = problem.clone();
+        let problem = problem.with_required(&target.required)?;
+        let mut outcome = plan_target(&problem, &whole, &target, rooms.as_ref(), request, t0)?;
+        // Resuming: the interrupted plan's remainder, where it is faster.
+        if let Some(rest) = remainder::continued(map, &problem, request, t0)?
+            && rest.evaluation.metrics.est_time_s < outcome.evaluation.metrics.est_time_s
+        {
+            outcome = PlanOutcome {
+                plan_ms: t0.elapsed().as_secs_f64() * 1e3,
+                ..rest
+            };
+        }
         let res = map.resolution();
         let required_cells = target.required.count_true();
         outcome.targets = Some(TargetSummary {
@@ -187,23 +199,25 @@ fn keep_out_spares_start(
 /// connected part) and planned unit by unit, the robot free to drive
 /// anywhere between them; a target of more than half the plannable cells
 /// is also planned as the whole map is (its required cells covered on the
-/// way), and the faster plan kept.
+/// way), and the whole map's own plan is stopped at the first waypoint by
+/// which it has covered them ([`remainder::covering_part`]): the fastest
+/// of the three is kept.
 fn plan_target(
-    problem: CoverageProblem,
+    problem: &CoverageProblem,
+    whole: &CoverageProblem,
     target: &TargetCells,
     rooms: Option<&Rooms>,
     request: &PlanRequest,
     t0: Instant,
 ) -> Result<PlanOutcome> {
-    let problem = problem.with_required(&target.required)?;
-    let region = target_region(&problem, &target.required);
+    let region = target_region(problem, &target.required);
     let (w, h) = (region.width(), region.height());
     let labels = match (rooms, &target.room_labels) {
         (Some(rooms), _) => rooms.labels.clone(),
         (None, Some(chosen)) => chosen.clone(),
         (None, None) => Grid::new(w, h, 1),
     };
-    let units = RoomUnits::new(&region, &labels, min_unit_cells(&problem));
+    let units = RoomUnits::new(&region, &labels, min_unit_cells(problem));
     let given = match (&request.targets.rooms_only, &target.room_labels) {
         (Some(chosen), Some(room_labels)) if request.targets.room_order == RoomOrder::Given => {
             Some(given_order(&units, room_labels, chosen))
@@ -211,20 +225,24 @@ fn plan_target(
         _ => None,
     };
     let keep_order = given.is_some();
-    let by_units = plan_rooms(&problem, &units, given, request, t0)?;
+    let by_units = plan_rooms(problem, &units, given, request, t0)?;
     // A target of most of the map: its units cost about the map's, and the
     // map's own plan (covering the required cells on the way) may be the
     // faster; the faster is kept (not when the room order is given).
     if keep_order || 2 * region.count_true() <= problem.plannable().count_true() {
         return Ok(by_units);
     }
-    let by_map = plan_map(&problem, rooms, request, t0)?;
+    let by_map = plan_map(problem, rooms, request, t0)?;
+    let map_plan = plan_map(whole, rooms, request, t0)?;
+    let part = remainder::covering_part(problem, request, &map_plan, false, t0)?;
     let time = |o: &PlanOutcome| o.evaluation.metrics.est_time_s;
-    let mut kept = if time(&by_map) < time(&by_units) {
-        by_map
-    } else {
-        by_units
-    };
+    let mut kept = [Some(by_map), part]
+        .into_iter()
+        .flatten()
+        .fold(
+            by_units,
+            |best, o| if time(&o) < time(&best) { o } else { best },
+        );
     kept.plan_ms = t0.elapsed().as_secs_f64() * 1e3;
     Ok(kept)
 }
