@@ -270,10 +270,35 @@ fn a_door_wider_than_its_corridor_is_a_door() {
     assert_eq!(r.doors.len(), 4, "{:?}", r.doors);
 }
 
+/// A room's wall meeting the corridor's wall on a short piece between two
+/// doors (a T-junction, the wall across the corridor's cross-section
+/// thinning into the room's wall): no door across the corridor there.
+#[test]
+fn a_room_wall_meeting_the_corridor_between_two_doors_is_no_door() {
+    // Below the corridor: doors at columns 29-45 and 66-89, the wall
+    // between them 20 cells long with the rooms' wall meeting it at 55-56
+    // (a plan the generator made, where a cut used to split the corridor).
+    let top = Side {
+        depth: 70,
+        rooms: vec![(59, 21, 0.807, false), (100, 20, 0.5, false)],
+    };
+    let bottom = Side {
+        depth: 70,
+        rooms: vec![
+            (53, 17, 0.875, false),
+            (100, 24, 0.047, false),
+            (60, 20, 0.5, false),
+        ],
+    };
+    let p = plan(&top, &bottom, 26, 2, &[]);
+    let r = doorways(&p.free, &RoomParams::indoor(RES));
+    assert_eq!(check(&p, &r), Ok(()));
+    assert_eq!(r.doors.len(), 5, "{:?}", r.doors);
+}
+
 /// The generator's plans that the segmentation does not get right yet,
 /// per kind of plan, out of 100 seeded ones each: measured, and a guard
-/// that they do not grow. The known failures: a corridor 1.3-1.6 m wide
-/// cut across where a room's wall meets it (4 of 100), two doors near one
+/// that they do not grow. The known failures: two doors near one
 /// corner of a room joined by a cut from jamb to jamb (side doors), a
 /// block of furniture beside a door. `docs/segmentation.md` has the
 /// figures; the property test above is ignored until they are 0.
@@ -282,10 +307,10 @@ fn generated_plans_known_failures_do_not_grow() {
     use proptest::strategy::ValueTree;
     use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
     for (name, side_doors, furnished, known) in [
-        ("plain", false, false, 4),
-        ("side doors", true, false, 12),
-        ("furniture", false, true, 5),
-        ("all", true, true, 13),
+        ("plain", false, false, 0),
+        ("side doors", true, false, 8),
+        ("furniture", false, true, 1),
+        ("all", true, true, 9),
     ] {
         let rng = TestRng::deterministic_rng(RngAlgorithm::ChaCha);
         let mut runner = TestRunner::new_with_rng(Config::default(), rng);

@@ -157,6 +157,14 @@ pub(super) fn jamb(
                 .is_some_and(|&f| f)
     };
     let steps = run.ceil().max(1.0) as usize;
+    // The wall's thickness across the line where it starts and its least
+    // on the way: a wall across the line's end that thins into a wall in
+    // line (a short piece of corridor wall between two doors, with a room's
+    // wall meeting it) is a junction, no jamb.
+    let (mut first, mut least) = (None, usize::MAX);
+    let crossing = |first: Option<usize>, least: usize| {
+        first.is_some_and(|f: usize| least != usize::MAX && f > 2 * least + 3)
+    };
     for k in 0..steps {
         let t = k as f64 + 0.5;
         let (x, y) = (end.0 + ux * t, end.1 + uy * t);
@@ -176,13 +184,19 @@ pub(super) fn jamb(
             })
         };
         match (reach(nx, ny), reach(-nx, -ny)) {
-            (Some(p), Some(q)) if (p + q) as f64 <= 2.0 * wall_half + 1.0 => {}
+            (Some(p), Some(q)) if (p + q) as f64 <= 2.0 * wall_half + 1.0 => {
+                // (Only where the point is in the wall, not beside it.)
+                if p + q > 0 {
+                    first.get_or_insert(p + q);
+                    least = least.min(p + q);
+                }
+            }
             // The wall meets another (a corner, a junction): a jamb if it
             // ran thin for a few cells first.
-            _ => return k >= JUNCTION_CELLS,
+            _ => return k >= JUNCTION_CELLS && !crossing(first, least),
         }
     }
-    true
+    !crossing(first, least)
 }
 
 /// Whether the obstacle at `end` (coming from `from`) is `furniture`: the

@@ -12,7 +12,9 @@
 //!    corner). A gap between two wall ends, or between a wall end and the
 //!    face of another wall, is cut whatever the clearance of the spaces it
 //!    joins: a door wider than its corridor is still a door. The sides of a
-//!    corridor cross the line at a right angle: no cut.
+//!    corridor cross the line at a right angle: no cut; nor where a wall
+//!    across the line's end thins into one in line (a room's wall meeting
+//!    a short piece of corridor wall between two doors).
 //! 3. **Walls continued** (`extensions.rs`): a thin wall that ends in the
 //!    open is continued straight on to the wall ahead (up to 4.5 m), and a
 //!    wall's tip joined to the nearest other tip, where the space on one
