@@ -150,13 +150,25 @@ fn doorways_in(free: &Grid<bool>, params: &RoomParams) -> Rooms {
         (WALL_HALF_M * per_metre).max(1.0),
     );
     let blocked = free.map(|&f| !f);
-    let d4 = boundary_distance_sq4(&blocked, true);
-    let clearance = |c: Cell| (d4[c] as f64).sqrt() / 2.0;
-    let furniture = furniture(
-        &blocked,
-        ISLAND_M2 * per_metre * per_metre,
-        (ISLAND_THICK_M * per_metre).round().max(2.0) as usize,
+    // Three independent steps side by side: the clearance, the furniture
+    // and the walls continued across openings (each the same whatever
+    // the thread count).
+    let ((d4, furniture), extended) = rayon::join(
+        || {
+            rayon::join(
+                || boundary_distance_sq4(&blocked, true),
+                || {
+                    furniture(
+                        &blocked,
+                        ISLAND_M2 * per_metre * per_metre,
+                        (ISLAND_THICK_M * per_metre).round().max(2.0) as usize,
+                    )
+                },
+            )
+        },
+        || extensions::extension_cuts(free, door_half, per_metre, wall_half),
     );
+    let clearance = |c: Cell| (d4[c] as f64).sqrt() / 2.0;
     let rings = rings(door_half);
     let narrowest_door = (MIN_DOOR_M / 2.0 * per_metre).max(1.5);
     // Critical lines of the narrow axis cells, kept where a wall ends in line.
@@ -181,9 +193,7 @@ fn doorways_in(free: &Grid<bool>, params: &RoomParams) -> Rooms {
         })
         .collect();
     let mut cuts = cuts;
-    cuts.extend(extensions::extension_cuts(
-        free, door_half, per_metre, wall_half,
-    ));
+    cuts.extend(extended);
     let cells: Vec<Vec<Cell>> = cuts.iter().map(|cut| cut_cells_of(free, cut)).collect();
     let mut on_cut = Grid::new(w, h, false);
     for &c in cells.iter().flatten() {
