@@ -37,30 +37,32 @@ pub(super) fn extension_cuts(
         (2.0 * door_half).floor() as isize,
         (EXTENSION_M * per_metre).floor() as isize,
     );
-    // Free on both sides across a wall at most two half thicknesses
-    // thick: the obstacle cells through (x, y) along (nx, ny), with a free
-    // cell at both ends (not where they meet the grid's edge).
-    let thin = |x: isize, y: isize, (nx, ny): (isize, isize)| {
+    // How thick a wall is across (nx, ny) at (x, y), if at most two half
+    // thicknesses with free space on both sides: the obstacle cells
+    // through (x, y) along (nx, ny), with a free cell at both ends (not
+    // where they meet the grid's edge).
+    let thickness = |x: isize, y: isize, (nx, ny): (isize, isize)| {
         let mut run = 1;
         for s in [1, -1] {
             let mut k = 1;
             loop {
                 let (px, py) = (x + s * nx * k, y + s * ny * k);
                 if px < 0 || py < 0 || px >= w || py >= h {
-                    return false;
+                    return None;
                 }
                 if is_free(px, py) {
                     break;
                 }
                 run += 1;
                 if run > most {
-                    return false;
+                    return None;
                 }
                 k += 1;
             }
         }
-        true
+        Some(run)
     };
+    let thin = |x: isize, y: isize, n: (isize, isize)| thickness(x, y, n).is_some();
     let cells = free.as_slice();
     // Row by row in parallel, the rows' cuts in row order.
     let rows: Vec<(Vec<Cut>, Vec<End>)> = (0..h)
@@ -77,9 +79,22 @@ pub(super) fn extension_cuts(
                         continue;
                     }
                     let n = (-dy, dx);
-                    let wall = (0..=behind).all(|k| {
-                        let (bx, by) = (x - dx * k, y - dy * k);
-                        !is_free(bx, by) && thin(bx, by, n)
+                    // A thin wall behind the end, not a wall across it
+                    // that thins into one (a room's wall meeting a short
+                    // piece of corridor wall between two doors).
+                    let across: Option<Vec<isize>> = (0..=behind)
+                        .map(|k| {
+                            let (bx, by) = (x - dx * k, y - dy * k);
+                            if is_free(bx, by) {
+                                None
+                            } else {
+                                thickness(bx, by, n)
+                            }
+                        })
+                        .collect();
+                    let wall = across.is_some_and(|t| {
+                        let least = t.iter().copied().min().unwrap_or(0);
+                        t.first().is_none_or(|&first| first <= 2 * least + 3)
                     });
                     if !wall {
                         continue;
@@ -161,8 +176,8 @@ struct End {
 
 /// The tips of the walls whose end cells are `ends`: each run of end
 /// cells side by side across one wall's end, as the point in the middle
-/// of its face.
-fn tips(mut ends: Vec<End>) -> Vec<Pt> {
+/// of its face, with the way out of the wall there.
+fn tips(mut ends: Vec<End>) -> Vec<(Pt, Pt)> {
     let key = |e: &End| (e.dx, e.dy, e.x * e.dx + e.y * e.dy, e.y * e.dx - e.x * e.dy);
     ends.sort_by_key(key);
     let mut out = Vec::new();
@@ -177,8 +192,11 @@ fn tips(mut ends: Vec<End>) -> Vec<Pt> {
         }
         let e = ends[(i + j - 1) / 2];
         out.push((
-            e.x as f64 + 0.5 + e.dx as f64 * 0.5,
-            e.y as f64 + 0.5 + e.dy as f64 * 0.5,
+            (
+                e.x as f64 + 0.5 + e.dx as f64 * 0.5,
+                e.y as f64 + 0.5 + e.dy as f64 * 0.5,
+            ),
+            (e.dx as f64, e.dy as f64),
         ));
         i = j;
     }
@@ -186,23 +204,25 @@ fn tips(mut ends: Vec<End>) -> Vec<Pt> {
 }
 
 /// Cuts from each wall's tip to the nearest other tip, where that lies
-/// between a door's width and [`EXTENSION_M`] away over free cells, and
-/// the space on one side at least of the cut is wider than the cut (the
-/// open side of a room, not a corridor's cross-section).
+/// between a door's width and [`EXTENSION_M`] away over free cells, not
+/// behind either tip (a cut that turns back round a wall's end, from a
+/// door's jamb across a room's corner, continues no wall), and the space
+/// on one side at least of the cut is wider than the cut (the open side of
+/// a room, not a corridor's cross-section).
 fn end_to_end_cuts(
     is_free: &(impl Fn(isize, isize) -> bool + Sync),
-    tips: &[Pt],
+    tips: &[(Pt, Pt)],
     (shortest, longest): (isize, isize),
     behind: isize,
 ) -> Vec<Cut> {
     let free_at = |p: Pt| p.0 >= 0.0 && p.1 >= 0.0 && is_free(p.0 as isize, p.1 as isize);
     let mut pairs = std::collections::BTreeSet::new();
-    for (i, &a) in tips.iter().enumerate() {
+    for (i, &(a, _)) in tips.iter().enumerate() {
         let nearest = tips
             .iter()
             .enumerate()
             .filter(|&(j, _)| j != i)
-            .map(|(j, &b)| ((b.0 - a.0).hypot(b.1 - a.1), j))
+            .map(|(j, &(b, _))| ((b.0 - a.0).hypot(b.1 - a.1), j))
             .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
         if let Some((d, j)) = nearest {
             if d > shortest as f64 && d <= longest as f64 {
@@ -212,9 +232,12 @@ fn end_to_end_cuts(
     }
     let mut out = Vec::new();
     for (i, j) in pairs {
-        let (a, b) = (tips[i], tips[j]);
+        let ((a, out_a), (b, out_b)) = (tips[i], tips[j]);
         let len = (b.0 - a.0).hypot(b.1 - a.1);
         let u = ((b.0 - a.0) / len, (b.1 - a.1) / len);
+        if u.0 * out_a.0 + u.1 * out_a.1 < 0.0 || -u.0 * out_b.0 - u.1 * out_b.1 < 0.0 {
+            continue;
+        }
         let open = (2..(2.0 * len) as usize - 1).all(|k| {
             let t = k as f64 / 2.0;
             free_at((a.0 + u.0 * t, a.1 + u.1 * t))
