@@ -6,6 +6,7 @@ use rayon::prelude::*;
 
 use oxcover_grid::{Cell, Grid};
 
+use super::lines::thins_out;
 use super::{Cut, Pt};
 
 /// Longest opening (m) closed by continuing a wall to the wall ahead.
@@ -94,7 +95,8 @@ pub(super) fn extension_cuts(
                         .collect();
                     let wall = across.is_some_and(|t| {
                         let least = t.iter().copied().min().unwrap_or(0);
-                        t.first().is_none_or(|&first| first <= 2 * least + 3)
+                        t.first()
+                            .is_none_or(|&first| !thins_out(first as f64, least as f64))
                     });
                     if !wall {
                         continue;

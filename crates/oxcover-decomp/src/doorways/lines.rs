@@ -158,12 +158,10 @@ pub(super) fn jamb(
     };
     let steps = run.ceil().max(1.0) as usize;
     // The wall's thickness across the line where it starts and its least
-    // on the way: a wall across the line's end that thins into a wall in
-    // line (a short piece of corridor wall between two doors, with a room's
-    // wall meeting it) is a junction, no jamb.
+    // on the way ([`thins_out`]).
     let (mut first, mut least) = (None, usize::MAX);
     let crossing = |first: Option<usize>, least: usize| {
-        first.is_some_and(|f: usize| least != usize::MAX && f > 2 * least + 3)
+        first.is_some_and(|f: usize| least != usize::MAX && thins_out(f as f64, least as f64))
     };
     for k in 0..steps {
         let t = k as f64 + 0.5;
@@ -197,6 +195,14 @@ pub(super) fn jamb(
         }
     }
     !crossing(first, least)
+}
+
+/// Whether a wall `first` cells thick where it ends and `least` at its
+/// thinnest behind is a wall across the end that thins into one in line
+/// (a room's wall meeting a short piece of corridor wall between two
+/// doors): a junction, not a wall's end.
+pub(super) fn thins_out(first: f64, least: f64) -> bool {
+    first > 2.0 * least + 3.0
 }
 
 /// Whether the obstacle at `end` (coming from `from`) is `furniture`: the

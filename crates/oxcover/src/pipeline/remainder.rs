@@ -81,7 +81,9 @@ pub(super) fn covering_part(
     } else {
         0
     };
-    let end = first_true(k, n, |e| covers(k, e));
+    // The first end that covers: one past the last that does not (the
+    // empty stretch from `k` covers nothing).
+    let end = 1 + last_true(k, n, |e| e == k || !covers(k, e));
     let frame = problem.frame();
     let Some(to) = frame
         .cell_at(&points[k])
@@ -156,19 +158,4 @@ fn last_true(lo: usize, hi: usize, holds: impl Fn(usize) -> bool) -> usize {
         }
     }
     lo
-}
-
-/// The first `i` in `lo + 1..=hi` where `holds`, given that it holds at
-/// `hi` and, from there on, at every later `i`.
-fn first_true(lo: usize, hi: usize, holds: impl Fn(usize) -> bool) -> usize {
-    let (mut lo, mut hi) = (lo, hi);
-    while hi - lo > 1 {
-        let mid = lo + (hi - lo) / 2;
-        if holds(mid) {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    hi
 }
