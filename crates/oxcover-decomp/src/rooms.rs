@@ -394,21 +394,64 @@ pub(crate) fn doors(labels: &Grid<u32>) -> Vec<Door> {
     // Each pair of 4-neighbours once: a cell and the cells right of and
     // below it; both cells of a pair with two labels touch.
     let (w, s) = (labels.width(), labels.as_slice());
-    for (i, &a) in s.iter().enumerate() {
+    let mut meet = |a: u32, b: u32, at: Cell, n: Cell| {
+        if b != 0 && b != a {
+            let cells = touching.entry((a.min(b), a.max(b))).or_default();
+            cells.push(at);
+            cells.push(n);
+        }
+    };
+    // Row by row (this reads every cell): a cell's right neighbour, then
+    // the one below it.
+    for (r, row) in s.chunks(w.max(1)).enumerate() {
+        let below = s.get((r + 1) * w..(r + 2) * w);
+        for (col, &a) in row.iter().enumerate() {
+            if a == 0 {
+                continue;
+            }
+            if let Some(&b) = row.get(col + 1) {
+                meet(a, b, Cell::new(r, col), Cell::new(r, col + 1));
+            }
+            if let Some(&b) = below.map(|v| &v[col]) {
+                meet(a, b, Cell::new(r, col), Cell::new(r + 1, col));
+            }
+        }
+    }
+    door_list(touching)
+}
+
+/// The doors between every pair of touching rooms, where of every two
+/// 4-neighbours of two rooms one at least is among `cells` (row-major
+/// indices; no other cell is read but their neighbours).
+pub(crate) fn doors_at(labels: &Grid<u32>, cells: impl IntoIterator<Item = usize>) -> Vec<Door> {
+    let mut touching: BTreeMap<(u32, u32), Vec<Cell>> = BTreeMap::new();
+    let (w, h, s) = (labels.width(), labels.height(), labels.as_slice());
+    for i in cells {
+        let a = s[i];
         if a == 0 {
             continue;
         }
         let (r, col) = (i / w, i % w);
-        let right = (col + 1 < w).then(|| (s[i + 1], Cell::new(r, col + 1)));
-        let below = s.get(i + w).map(|&b| (b, Cell::new(r + 1, col)));
-        for (b, n) in [right, below].into_iter().flatten() {
+        let near = [
+            (r > 0).then(|| i - w),
+            (col > 0).then(|| i - 1),
+            (col + 1 < w).then_some(i + 1),
+            (r + 1 < h).then_some(i + w),
+        ];
+        for n in near.into_iter().flatten() {
+            let b = s[n];
             if b != 0 && b != a {
                 let cells = touching.entry((a.min(b), a.max(b))).or_default();
                 cells.push(Cell::new(r, col));
-                cells.push(n);
+                cells.push(Cell::new(n / w, n % w));
             }
         }
     }
+    door_list(touching)
+}
+
+/// The doors of the touching cells of each pair of rooms.
+fn door_list(touching: BTreeMap<(u32, u32), Vec<Cell>>) -> Vec<Door> {
     touching
         .into_iter()
         .map(|(rooms, mut cells)| {

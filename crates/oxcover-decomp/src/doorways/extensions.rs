@@ -6,7 +6,7 @@ use rayon::prelude::*;
 
 use oxcover_grid::{Cell, Grid};
 
-use super::lines::thins_out;
+use super::lines::{THINS_OUT_M, thins_out};
 use super::{Cut, Pt};
 
 /// Longest opening (m) closed by continuing a wall to the wall ahead.
@@ -33,6 +33,7 @@ pub(super) fn extension_cuts(
         x >= 0 && y >= 0 && x < w && y < h && free[Cell::new(y as usize, x as usize)]
     };
     let behind = (EXT_WALL_M * per_metre).ceil().max(1.0) as isize;
+    let margin = THINS_OUT_M * per_metre;
     let most = (2.0 * wall_half).ceil().max(1.0) as isize;
     let (shortest, longest) = (
         (2.0 * door_half).floor() as isize,
@@ -96,7 +97,7 @@ pub(super) fn extension_cuts(
                     let wall = across.is_some_and(|t| {
                         let least = t.iter().copied().min().unwrap_or(0);
                         t.first()
-                            .is_none_or(|&first| !thins_out(first as f64, least as f64))
+                            .is_none_or(|&first| !thins_out(first as f64, least as f64, margin))
                     });
                     if !wall {
                         continue;

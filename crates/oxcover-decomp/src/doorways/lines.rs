@@ -16,6 +16,11 @@ pub(super) const JUNCTION_CELLS: usize = 3;
 /// Half the thickness (m) of the thickest wall taken for a jamb.
 pub(super) const WALL_HALF_M: f64 = 0.5;
 
+/// How much thicker (m) than twice its thinnest part a wall across a
+/// line's end must be where the line meets it to count as a wall that
+/// thins into one in line ([`thins_out`]).
+pub(super) const THINS_OUT_M: f64 = 0.15;
+
 /// Narrowest doorway (m): narrower gaps (between chairs, behind a table)
 /// are no doors.
 pub(super) const MIN_DOOR_M: f64 = 0.1;
@@ -124,7 +129,8 @@ pub(super) const ISLAND_THICK_M: f64 = 0.3;
 /// wall it meets: every point along the line past `end` is in a non-free
 /// cell (or beside one, a cell's tolerance) of a wall at most
 /// `2 · wall_half` cells thick, free space on both its sides, and not
-/// `furniture`.
+/// `furniture`; and no wall across the end that thins into one in line
+/// ([`thins_out`] with `margin`).
 pub(super) fn jamb(
     free: &Grid<bool>,
     furniture: &Grid<bool>,
@@ -132,6 +138,7 @@ pub(super) fn jamb(
     end: Pt,
     run: f64,
     wall_half: f64,
+    margin: f64,
 ) -> bool {
     let (dx, dy) = (end.0 - from.0, end.1 - from.1);
     let len = dx.hypot(dy);
@@ -161,7 +168,9 @@ pub(super) fn jamb(
     // on the way ([`thins_out`]).
     let (mut first, mut least) = (None, usize::MAX);
     let crossing = |first: Option<usize>, least: usize| {
-        first.is_some_and(|f: usize| least != usize::MAX && thins_out(f as f64, least as f64))
+        first.is_some_and(|f: usize| {
+            least != usize::MAX && thins_out(f as f64, least as f64, margin)
+        })
     };
     for k in 0..steps {
         let t = k as f64 + 0.5;
@@ -200,9 +209,10 @@ pub(super) fn jamb(
 /// Whether a wall `first` cells thick where it ends and `least` at its
 /// thinnest behind is a wall across the end that thins into one in line
 /// (a room's wall meeting a short piece of corridor wall between two
-/// doors): a junction, not a wall's end.
-pub(super) fn thins_out(first: f64, least: f64) -> bool {
-    first > 2.0 * least + 3.0
+/// doors): a junction, not a wall's end. `margin` ([`THINS_OUT_M`] in
+/// cells) is how much thicker than twice the thinnest it must be.
+pub(super) fn thins_out(first: f64, least: f64, margin: f64) -> bool {
+    first > 2.0 * least + margin
 }
 
 /// Whether the obstacle at `end` (coming from `from`) is `furniture`: the

@@ -75,3 +75,34 @@ fn labels_are_numbered_top_left_first() {
     assert_eq!(r.doors.len(), 1);
     assert_eq!(r.doors[0].rooms, (1, 2));
 }
+
+#[test]
+fn blocks_are_a_tenth_of_a_metre_or_so() {
+    use super::blocks::block_side;
+    assert_eq!(block_side(0.05), 2);
+    assert_eq!(block_side(0.025), 4);
+    assert_eq!(block_side(0.03), 3);
+    assert_eq!(block_side(0.07), 1);
+    assert_eq!(block_side(0.1), 1);
+    assert_eq!(block_side(f64::NAN), 1);
+    assert_eq!(block_side(0.0), 1);
+}
+
+#[test]
+fn a_wall_one_cell_thick_is_kept_on_blocks() {
+    // Two rooms 3 m x 2 m at 5 cm, a wall one cell thick between them with
+    // a 0.9 m door; the wall in the middle of a block and on its edge.
+    for wall_row in [43, 44] {
+        let free = Grid::from_fn(64, 90, |c: Cell| {
+            let inside = (2..62).contains(&c.col) && (2..88).contains(&c.row);
+            let door = (23..41).contains(&c.col);
+            inside && (c.row != wall_row || door)
+        });
+        let r = doorways(&free, &RoomParams::indoor(0.05));
+        assert_eq!(r.count(), 2, "wall row {wall_row}: {:?}", r.areas);
+        for c in free.cells() {
+            assert_eq!(free[c], r.labels[c] != 0, "{c:?}");
+        }
+        assert_ne!(r.labels[Cell::new(10, 10)], r.labels[Cell::new(80, 10)]);
+    }
+}

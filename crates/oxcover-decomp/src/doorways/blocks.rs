@@ -1,0 +1,206 @@
+//! A fine map segmented on blocks of cells: the doorways are looked for on
+//! a grid of [`WORK_RES_M`] cells (a block free where all its cells are),
+//! and the fine free cells take the label of their block, or, where their
+//! block is not free (beside walls, in narrow gaps), of the labelled cells
+//! they connect to, grown breadth first.
+
+use std::collections::VecDeque;
+
+use oxcover_grid::{Cell, Grid};
+
+use rayon::prelude::*;
+
+use super::{doorways_in, merge, numbered, relabel};
+use crate::rooms::{RoomParams, Rooms, doors_at, grow, merge_small_regions};
+
+/// The cell size (m) doorways are looked for at: a map at least twice as
+/// fine is segmented on blocks of `⌊WORK_RES_M / resolution⌋²` cells
+/// (doors of 0.7 m and more are seven blocks across and more; thin walls
+/// stay: a block holding any obstacle is one).
+pub(super) const WORK_RES_M: f64 = 0.1;
+
+/// Cells per block side for a map of `resolution` (1: no blocks).
+pub(super) fn block_side(resolution: f64) -> usize {
+    if resolution.is_finite() && resolution > 0.0 {
+        ((WORK_RES_M / resolution) * (1.0 + 1e-9)).floor().max(1.0) as usize
+    } else {
+        1
+    }
+}
+
+/// Rows `r0..r1` and columns `c0..c1` of a grid: the part that holds every
+/// free cell.
+pub(super) type Window = (usize, usize, usize, usize);
+
+/// [`super::doorways`] of the free cells of `free`, all inside `window`,
+/// on blocks of `k × k` cells (`k` at least 2) laid from the window's
+/// top-left corner.
+pub(super) fn doorways_blocked(
+    free: &Grid<bool>,
+    (r0, r1, c0, c1): Window,
+    k: usize,
+    params: &RoomParams,
+) -> Rooms {
+    let (w, h) = (free.width(), free.height());
+    let (bw, bh) = ((c1 - c0).div_ceil(k), (r1 - r0).div_ceil(k));
+    // Each block's free cells; a block is free where all its k × k cells
+    // are (a block cut by the window's edge is not).
+    let cells = free.as_slice();
+    let mut count = vec![0u32; bw * bh];
+    // (Block rows in parallel: the same counts at any thread count.)
+    count.par_chunks_mut(bw).enumerate().for_each(|(br, out)| {
+        for r in r0 + br * k..(r0 + (br + 1) * k).min(r1) {
+            let row = &cells[r * w + c0..r * w + c1];
+            let runs = row.chunks_exact(k);
+            let tail = runs.remainder();
+            for (n, run) in out.iter_mut().zip(runs) {
+                *n += run.iter().map(|&f| u32::from(f)).sum::<u32>();
+            }
+            if let Some(n) = out.get_mut(row.len() / k) {
+                *n += tail.iter().map(|&f| u32::from(f)).sum::<u32>();
+            }
+        }
+    });
+    let full = (k * k) as u32;
+    let blocks = Grid::from_vec(bw, bh, count.iter().map(|&n| n == full).collect())
+        .unwrap_or_else(|| Grid::new(0, 0, false));
+    let coarse = RoomParams {
+        resolution: params.resolution * k as f64,
+        ..*params
+    };
+    let part = doorways_in(&blocks, &coarse, 1, false);
+    // The cells of a free block take its label.
+    let mut labels = Grid::new(w, h, 0u32);
+    let block_labels = part.labels.as_slice();
+    // Each block row's labels cell by cell, copied into each of its rows
+    // (block rows in parallel).
+    labels.as_mut_slice()[r0 * w..r1 * w]
+        .par_chunks_mut(k * w)
+        .enumerate()
+        .for_each(|(br, rows)| {
+            let b = br * bw;
+            let mut spread = vec![0u32; c1 - c0];
+            for (j, run) in spread.chunks_mut(k).enumerate() {
+                let l = if count[b + j] == full {
+                    block_labels[b + j]
+                } else {
+                    0
+                };
+                run.fill(l);
+            }
+            for row in rows.chunks_mut(w) {
+                row[c0..c1].copy_from_slice(&spread);
+            }
+        });
+    let out = labels.as_mut_slice();
+    // The free cells of the other blocks that hold any: those beside a
+    // labelled cell take its label (the first of above, left, right,
+    // below), then the rest are grown into breadth first from them.
+    let mixed: Vec<usize> = (0..bw * bh)
+        .filter(|&b| count[b] > 0 && count[b] < full)
+        .collect();
+    let cells_of = |b: usize| {
+        let (r, c) = (r0 + (b / bw) * k, c0 + (b % bw) * k);
+        (r..(r + k).min(r1)).flat_map(move |r| (c..(c + k).min(c1)).map(move |c| r * w + c))
+    };
+    let mut seeds = Vec::new();
+    for &b in &mixed {
+        for i in cells_of(b) {
+            if !cells[i] {
+                continue;
+            }
+            let (r, c) = (i / w, i % w);
+            let near = [
+                (r > 0).then(|| i - w),
+                (c > 0).then(|| i - 1),
+                (c + 1 < w).then_some(i + 1),
+                (r + 1 < h).then_some(i + w),
+            ];
+            if let Some(l) = near.into_iter().flatten().map(|n| out[n]).find(|&l| l != 0) {
+                seeds.push((i, l));
+            }
+        }
+    }
+    let mut queue: VecDeque<Cell> = VecDeque::with_capacity(seeds.len());
+    for (i, l) in seeds {
+        out[i] = l;
+        queue.push_back(Cell::new(i / w, i % w));
+    }
+    grow(free, &mut labels, &mut queue);
+    let per_metre = 1.0 / params.resolution;
+    let min_cells = (params.min_area_m2 * per_metre * per_metre).max(1.0);
+    // Free cells no labelled one reaches: regions of their own, merged as
+    // the fine segmentation merges its small ones (then numbered as it
+    // numbers them).
+    let blocks_rooms = part.areas.len();
+    let mut next = blocks_rooms as u32 + 1;
+    for &b in &mixed {
+        for i in cells_of(b) {
+            if cells[i] && labels.as_slice()[i] == 0 {
+                let c = Cell::new(i / w, i % w);
+                labels[c] = next;
+                next += 1;
+                grow(free, &mut labels, &mut VecDeque::from([c]));
+            }
+        }
+    }
+    if next > blocks_rooms as u32 + 1 {
+        merge_small_regions(&mut labels, min_cells);
+        merge::join_pockets(&mut labels, min_cells);
+        return relabel(labels, min_cells);
+    }
+    // Else each room's size and first cell from its free blocks and its
+    // cells in the others; the doors where rooms can touch: in the blocks
+    // that are not free and in free blocks beside another room's or such.
+    let top_left = |b: usize| (r0 + (b / bw) * k) * w + c0 + (b % bw) * k;
+    let mut size = vec![0usize; blocks_rooms + 1];
+    let mut at = vec![usize::MAX; blocks_rooms + 1];
+    for b in (0..bw * bh).filter(|&b| count[b] == full) {
+        let l = block_labels[b] as usize;
+        size[l] += full as usize;
+        at[l] = at[l].min(top_left(b));
+    }
+    for &b in &mixed {
+        for i in cells_of(b) {
+            let l = labels.as_slice()[i] as usize;
+            if l != 0 {
+                size[l] += 1;
+                at[l] = at[l].min(i);
+            }
+        }
+    }
+    let mut first: Vec<u32> = (1..=blocks_rooms as u32)
+        .filter(|&l| size[l as usize] > 0)
+        .collect();
+    first.sort_by_key(|&l| at[l as usize]);
+    // Two rooms touch in a block that is not free, or where two free blocks
+    // of two rooms meet.
+    let touches = |b: usize| {
+        let (br, bc) = (b / bw, b % bw);
+        let near = [
+            (br > 0).then(|| b - bw),
+            (bc > 0).then(|| b - 1),
+            (bc + 1 < bw).then_some(b + 1),
+            (br + 1 < bh).then_some(b + bw),
+        ];
+        count[b] > 0
+            && (count[b] < full
+                || near
+                    .into_iter()
+                    .flatten()
+                    .any(|n| count[n] == full && block_labels[n] != block_labels[b]))
+    };
+    // (Bands of block rows in parallel, the doors' cells sorted after.)
+    numbered(labels, &size, &first, min_cells, |labels| {
+        let bands: Vec<Vec<usize>> = (0..bh)
+            .into_par_iter()
+            .map(|br| {
+                (br * bw..(br + 1) * bw)
+                    .filter(|&b| touches(b))
+                    .flat_map(cells_of)
+                    .collect()
+            })
+            .collect();
+        doors_at(labels, bands.into_iter().flatten())
+    })
+}
