@@ -420,38 +420,8 @@ pub(crate) fn doors(labels: &Grid<u32>) -> Vec<Door> {
     door_list(touching)
 }
 
-/// The doors between every pair of touching rooms, where of every two
-/// 4-neighbours of two rooms one at least is among `cells` (row-major
-/// indices; no other cell is read but their neighbours).
-pub(crate) fn doors_at(labels: &Grid<u32>, cells: impl IntoIterator<Item = usize>) -> Vec<Door> {
-    let mut touching: BTreeMap<(u32, u32), Vec<Cell>> = BTreeMap::new();
-    let (w, h, s) = (labels.width(), labels.height(), labels.as_slice());
-    for i in cells {
-        let a = s[i];
-        if a == 0 {
-            continue;
-        }
-        let (r, col) = (i / w, i % w);
-        let near = [
-            (r > 0).then(|| i - w),
-            (col > 0).then(|| i - 1),
-            (col + 1 < w).then_some(i + 1),
-            (r + 1 < h).then_some(i + w),
-        ];
-        for n in near.into_iter().flatten() {
-            let b = s[n];
-            if b != 0 && b != a {
-                let cells = touching.entry((a.min(b), a.max(b))).or_default();
-                cells.push(Cell::new(r, col));
-                cells.push(Cell::new(n / w, n % w));
-            }
-        }
-    }
-    door_list(touching)
-}
-
 /// The doors of the touching cells of each pair of rooms.
-fn door_list(touching: BTreeMap<(u32, u32), Vec<Cell>>) -> Vec<Door> {
+pub(crate) fn door_list(touching: BTreeMap<(u32, u32), Vec<Cell>>) -> Vec<Door> {
     touching
         .into_iter()
         .map(|(rooms, mut cells)| {

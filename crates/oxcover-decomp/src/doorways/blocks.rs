@@ -4,14 +4,14 @@
 //! block is not free (beside walls, in narrow gaps), of the labelled cells
 //! they connect to, grown breadth first.
 
-use std::collections::VecDeque;
+use std::collections::{BTreeMap, VecDeque};
 
 use oxcover_grid::{Cell, Grid};
 
 use rayon::prelude::*;
 
 use super::{doorways_in, merge, numbered, relabel};
-use crate::rooms::{RoomParams, Rooms, doors_at, grow, merge_small_regions};
+use crate::rooms::{RoomParams, Rooms, door_list, grow, merge_small_regions};
 
 /// The cell size (m) doorways are looked for at: a map at least twice as
 /// fine is segmented on blocks of `⌊WORK_RES_M / resolution⌋²` cells
@@ -129,52 +129,63 @@ pub(super) fn doorways_blocked(
     grow(free, &mut labels, &mut queue);
     let per_metre = 1.0 / params.resolution;
     let min_cells = (params.min_area_m2 * per_metre * per_metre).max(1.0);
-    // Free cells no labelled one reaches: regions of their own, merged as
-    // the fine segmentation merges its small ones (then numbered as it
-    // numbers them).
+    // Each room's size and first cell from its free blocks and its cells
+    // in the others.
     let blocks_rooms = part.areas.len();
-    let mut next = blocks_rooms as u32 + 1;
+    let top_left = |b: usize| (r0 + (b / bw) * k) * w + c0 + (b % bw) * k;
+    // (And the least and greatest room in each block, (0, 0) for none.)
+    let mut size = vec![0usize; blocks_rooms + 1];
+    let mut at = vec![usize::MAX; blocks_rooms + 1];
+    let mut range = vec![(0u32, 0u32); bw * bh];
+    for b in (0..bw * bh).filter(|&b| count[b] == full) {
+        let l = block_labels[b];
+        size[l as usize] += full as usize;
+        at[l as usize] = at[l as usize].min(top_left(b));
+        range[b] = (l, l);
+    }
+    let mut unreached = false;
     for &b in &mixed {
+        let (mut lo, mut hi) = (u32::MAX, 0);
         for i in cells_of(b) {
-            if cells[i] && labels.as_slice()[i] == 0 {
-                let c = Cell::new(i / w, i % w);
-                labels[c] = next;
-                next += 1;
-                grow(free, &mut labels, &mut VecDeque::from([c]));
+            let l = labels.as_slice()[i];
+            if l != 0 {
+                size[l as usize] += 1;
+                at[l as usize] = at[l as usize].min(i);
+                (lo, hi) = (lo.min(l), hi.max(l));
+            } else if cells[i] {
+                unreached = true;
             }
         }
+        if hi > 0 {
+            range[b] = (lo, hi);
+        }
     }
-    if next > blocks_rooms as u32 + 1 {
+    if unreached {
+        // Free cells no labelled one reaches: regions of their own, merged
+        // as the fine segmentation merges its small ones, then numbered as
+        // it numbers them.
+        let mut next = blocks_rooms as u32 + 1;
+        for &b in &mixed {
+            for i in cells_of(b) {
+                if cells[i] && labels.as_slice()[i] == 0 {
+                    let c = Cell::new(i / w, i % w);
+                    labels[c] = next;
+                    next += 1;
+                    grow(free, &mut labels, &mut VecDeque::from([c]));
+                }
+            }
+        }
         merge_small_regions(&mut labels, min_cells);
         merge::join_pockets(&mut labels, min_cells);
         return relabel(labels, min_cells);
-    }
-    // Else each room's size and first cell from its free blocks and its
-    // cells in the others; the doors where rooms can touch: in the blocks
-    // that are not free and in free blocks beside another room's or such.
-    let top_left = |b: usize| (r0 + (b / bw) * k) * w + c0 + (b % bw) * k;
-    let mut size = vec![0usize; blocks_rooms + 1];
-    let mut at = vec![usize::MAX; blocks_rooms + 1];
-    for b in (0..bw * bh).filter(|&b| count[b] == full) {
-        let l = block_labels[b] as usize;
-        size[l] += full as usize;
-        at[l] = at[l].min(top_left(b));
-    }
-    for &b in &mixed {
-        for i in cells_of(b) {
-            let l = labels.as_slice()[i] as usize;
-            if l != 0 {
-                size[l] += 1;
-                at[l] = at[l].min(i);
-            }
-        }
     }
     let mut first: Vec<u32> = (1..=blocks_rooms as u32)
         .filter(|&l| size[l as usize] > 0)
         .collect();
     first.sort_by_key(|&l| at[l as usize]);
-    // Two rooms touch in a block that is not free, or where two free blocks
-    // of two rooms meet.
+    // Two rooms touch only in a block of two rooms or where a block meets
+    // one of other rooms: only there are the cells' neighbours read (bands
+    // of block rows in parallel, their pairs in band order).
     let touches = |b: usize| {
         let (br, bc) = (b / bw, b % bw);
         let near = [
@@ -183,24 +194,51 @@ pub(super) fn doorways_blocked(
             (bc + 1 < bw).then_some(b + 1),
             (br + 1 < bh).then_some(b + bw),
         ];
-        count[b] > 0
-            && (count[b] < full
+        let here = range[b];
+        here.1 > 0
+            && (here.0 != here.1
                 || near
                     .into_iter()
                     .flatten()
-                    .any(|n| count[n] == full && block_labels[n] != block_labels[b]))
+                    .any(|n| range[n].1 > 0 && range[n] != here))
     };
-    // (Bands of block rows in parallel, the doors' cells sorted after.)
     numbered(labels, &size, &first, min_cells, |labels| {
-        let bands: Vec<Vec<usize>> = (0..bh)
+        let s = labels.as_slice();
+        let bands: Vec<Vec<(u32, u32, usize, usize)>> = (0..bh)
             .into_par_iter()
             .map(|br| {
-                (br * bw..(br + 1) * bw)
+                let mut pairs = Vec::new();
+                for i in (br * bw..(br + 1) * bw)
                     .filter(|&b| touches(b))
                     .flat_map(cells_of)
-                    .collect()
+                {
+                    let a = s[i];
+                    if a == 0 {
+                        continue;
+                    }
+                    let (r, c) = (i / w, i % w);
+                    let near = [
+                        (r > 0).then(|| i - w),
+                        (c > 0).then(|| i - 1),
+                        (c + 1 < w).then_some(i + 1),
+                        (r + 1 < h).then_some(i + w),
+                    ];
+                    for n in near.into_iter().flatten() {
+                        let b = s[n];
+                        if b != 0 && b != a {
+                            pairs.push((a.min(b), a.max(b), i, n));
+                        }
+                    }
+                }
+                pairs
             })
             .collect();
-        doors_at(labels, bands.into_iter().flatten())
+        let mut touching: BTreeMap<(u32, u32), Vec<Cell>> = BTreeMap::new();
+        for (a, b, i, n) in bands.into_iter().flatten() {
+            let cells = touching.entry((a, b)).or_default();
+            cells.push(Cell::new(i / w, i % w));
+            cells.push(Cell::new(n / w, n % w));
+        }
+        door_list(touching)
     })
 }
