@@ -20,6 +20,7 @@ use oxcover_decomp::merge_small_regions;
 use oxcover_distance::{Wavefront, cidt};
 use oxcover_grid::{Cell, Components, Grid, components4_by_class};
 
+use crate::error::{Error, Result};
 use crate::problem::CoverageProblem;
 use crate::tour::open_tour;
 
@@ -94,6 +95,74 @@ impl RoomUnits {
             self.labels[c] = id;
         }
         self.sizes = sizes;
+    }
+
+    /// Each unit's cells' bounding box: first and last row, first and last
+    /// column (`bounds()[u - 1]` for unit `u`).
+    #[must_use]
+    pub fn bounds(&self) -> Vec<(usize, usize, usize, usize)> {
+        let mut b = vec![(usize::MAX, 0, usize::MAX, 0); self.count()];
+        let w = self.labels.width().max(1);
+        for (r, row) in self.labels.as_slice().chunks(w).enumerate() {
+            for (c, &l) in row.iter().enumerate() {
+                if let Some(x) = (l as usize).checked_sub(1).and_then(|i| b.get_mut(i)) {
+                    *x = (x.0.min(r), x.1.max(r), x.2.min(c), x.3.max(c));
+                }
+            }
+        }
+        b
+    }
+
+    /// [`CoverageProblem::restricted_claiming`] of `problem` to unit `u`,
+    /// the claim the cells `claims` ([`unit_claims`]) gives to `u` or to
+    /// every unit, reading only the unit's cells' bounding box `bounds`
+    /// (as [`RoomUnits::bounds`] gives it): the same problem, at the
+    /// unit's cost rather than the map's.
+    ///
+    /// # Errors
+    /// As [`CoverageProblem::restricted_claiming`].
+    pub fn restricted(
+        &self,
+        problem: &CoverageProblem,
+        u: u32,
+        bounds: (usize, usize, usize, usize),
+        start: Cell,
+        claims: &Grid<u32>,
+    ) -> Result<CoverageProblem> {
+        let plannable = problem.plannable();
+        let size = (plannable.width(), plannable.height());
+        for (name, w, h) in [
+            ("region mask", self.labels.width(), self.labels.height()),
+            ("claimed cells", claims.width(), claims.height()),
+        ] {
+            if (w, h) != size {
+                return Err(Error::BadParameter {
+                    name,
+                    value: format!("{w}x{h}"),
+                    expected: "the map's size",
+                });
+            }
+        }
+        if !(plannable.is_set(start) && self.unit_of(start) == u) {
+            return Err(Error::BadParameter {
+                name: "region start",
+                value: format!("{start:?}"),
+                expected: "a plannable cell inside the region",
+            });
+        }
+        let (r0, r1, c0, c1) = bounds;
+        let window = (
+            r0.min(start.row),
+            r1.max(start.row),
+            c0.min(start.col),
+            c1.max(start.col),
+        );
+        Ok(problem.cropped(
+            window,
+            start,
+            |c| self.labels[c] == u,
+            |c| claims[c] == u || claims[c] == ANY_UNIT,
+        ))
     }
 
     /// Each unit's anchor: its cell nearest to the unit's centroid.
@@ -211,12 +280,35 @@ pub fn unit_claims(problem: &CoverageProblem, units: &RoomUnits) -> Grid<u32> {
     let tool = problem.tool_cells() + oxcover_grid::TOLERANCE_CELLS;
     let k = tool.ceil() as isize;
     let labels = &units.labels;
+    // The units' cells' bounding box widened by `k`: no cell beyond it has
+    // a unit's cell within reach (a coverage target's units may hold a
+    // small part of the map).
+    let (mut r0, mut r1, mut c0, mut c1) = (usize::MAX, 0, usize::MAX, 0);
+    for (r, row) in labels.as_slice().chunks(labels.width().max(1)).enumerate() {
+        if let (Some(a), Some(b)) = (
+            row.iter().position(|&l| l != 0),
+            row.iter().rposition(|&l| l != 0),
+        ) {
+            (r0, r1, c0, c1) = (r0.min(r), r1.max(r), c0.min(a), c1.max(b));
+        }
+    }
+    let k_cells = k.max(0) as usize;
+    let near_units = |c: Cell| {
+        r0 != usize::MAX
+            && c.row + k_cells >= r0
+            && c.row <= r1 + k_cells
+            && c.col + k_cells >= c0
+            && c.col <= c1 + k_cells
+    };
     Grid::from_fn(coverable.width(), coverable.height(), |c| {
         if !coverable[c] {
             return 0;
         }
         if labels[c] != 0 {
             return labels[c];
+        }
+        if !near_units(c) {
+            return ANY_UNIT;
         }
         let mut best = (f64::INFINITY, 0u32);
         for dr in -k..=k {
@@ -353,5 +445,25 @@ mod tests {
             assert!(claimed[sub.to_map_cell(c)], "{c:?}");
         }
         assert!(sub.cells().coverable.count_true() > 0);
+        // The unit's own problem, read in its bounding box, is the same.
+        let bounds = u.bounds();
+        assert_eq!(bounds, vec![(1, 3, 0, 4), (1, 3, 5, 8)]);
+        for (unit, start) in [(1, Cell::new(2, 0)), (2, Cell::new(2, 5))] {
+            let mask = u.mask(unit);
+            let claimed = claims.map(|&l| l == unit || l == ANY_UNIT);
+            let whole = p.restricted_claiming(&mask, start, Some(&claimed)).unwrap();
+            let own = u
+                .restricted(&p, unit, bounds[unit as usize - 1], start, &claims)
+                .unwrap();
+            assert_eq!(own.offset(), whole.offset());
+            assert_eq!(own.plannable(), whole.plannable());
+            assert_eq!(own.cells().coverable, whole.cells().coverable);
+            assert_eq!(own.cells().admissible, whole.cells().admissible);
+        }
+        // A start outside the unit is refused, as by restricted_claiming.
+        assert!(
+            u.restricted(&p, 1, bounds[0], Cell::new(2, 5), &claims)
+                .is_err()
+        );
     }
 }

@@ -232,17 +232,37 @@ impl CoverageProblem {
                 c1 = c1.max(c.col);
             }
         }
+        Ok(self.cropped(
+            (r0, r1, c0, c1),
+            start,
+            |c| mask[c],
+            |c| claim.is_none_or(|k| k[c]),
+        ))
+    }
+
+    /// The problem on the cells `inside` accepts (all within rows r0..=r1
+    /// and columns c0..=c1 of `window`, with `start` among them), those
+    /// `claim` accepts left to cover: cropped to the window widened by
+    /// the tool's reach.
+    pub(crate) fn cropped(
+        &self,
+        (r0, r1, c0, c1): (usize, usize, usize, usize),
+        start: Cell,
+        inside: impl Fn(Cell) -> bool,
+        claim: impl Fn(Cell) -> bool,
+    ) -> Self {
+        let plannable = self.plannable();
+        let (w, h) = (plannable.width(), plannable.height());
         let margin = self.tool_cells.ceil().min((w + h) as f64) as usize + 2;
         let (r0, c0) = (r0.saturating_sub(margin), c0.saturating_sub(margin));
         let (r1, c1) = ((r1 + 1 + margin).min(h), (c1 + 1 + margin).min(w));
         let (cw, ch) = (c1 - c0, r1 - r0);
         let at = |c: Cell| Cell::new(c.row + r0, c.col + c0);
-        let inside = Grid::from_fn(cw, ch, |c| plannable[at(c)] && mask[at(c)]);
+        let region = Grid::from_fn(cw, ch, |c| plannable[at(c)] && inside(at(c)));
         let local_start = Cell::new(start.row - r0, start.col - c0);
-        let reach = reachable(&inside, local_start);
-        let parent_coverable = Grid::from_fn(cw, ch, |c| {
-            self.cells.coverable[at(c)] && claim.is_none_or(|k| k[at(c)])
-        });
+        let reach = reachable(&region, local_start);
+        let parent_coverable =
+            Grid::from_fn(cw, ch, |c| self.cells.coverable[at(c)] && claim(at(c)));
         let coverable = coverable_cells(&parent_coverable, &reach, self.tool_cells);
         let cells = Coverability {
             robot: self.cells.robot,
@@ -253,7 +273,7 @@ impl CoverageProblem {
         };
         let frame = self.frame.crop(Cell::new(r0, c0), cw, ch);
         let coarse = CoarseGrid::new(&cells.reachable, self.coarse.block_size());
-        Ok(Self {
+        Self {
             frame,
             cells,
             coarse,
@@ -261,7 +281,7 @@ impl CoverageProblem {
             start_point: None,
             time: self.time,
             offset: Cell::new(self.offset.row + r0, self.offset.col + c0),
-        })
+        }
     }
 
     /// Where this problem's cell (0, 0) lies in the original map (not (0, 0)

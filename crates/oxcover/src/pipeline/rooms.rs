@@ -9,7 +9,7 @@ use std::time::Instant;
 use oxcover_decomp::{RoomParams, Rooms, voronoi};
 use oxcover_grid::{Cell, Grid, OccupancyGrid, Point};
 use oxcover_planners::{
-    ANY_UNIT, BoundaryRoute, CoverageProblem, RoomUnits, room_order, unit_claims, unit_exits,
+    BoundaryRoute, CoverageProblem, RoomUnits, room_order, unit_claims, unit_exits,
 };
 
 use super::region::{
@@ -80,6 +80,7 @@ pub(super) fn plan_rooms(
     let order = order.unwrap_or_else(|| room_order(problem, units));
     let exits = unit_exits(problem, units, &order);
     let claims = unit_claims(problem, units);
+    let bounds = units.bounds();
     let plan_cells = problem.plannable().count_true();
     let mut points: Vec<Point> = Vec::new();
     let mut cells: Vec<Cell> = Vec::new();
@@ -109,8 +110,7 @@ pub(super) fn plan_rooms(
             (entry, prefix)
         };
         let prefix_len = prefix.len();
-        let claimed = claims.map(|&l| l == u || l == ANY_UNIT);
-        let sub = problem.restricted_claiming(&units.mask(u), entry, Some(&claimed))?;
+        let sub = units.restricted(problem, u, bounds[u as usize - 1], entry, &claims)?;
         let exit = exits[i].and_then(|c| sub.from_map_cell(c));
         let mut region = plan_region(&sub, request, prefix, exit, Some(plan_cells))?;
         for c in &mut region.cells {
