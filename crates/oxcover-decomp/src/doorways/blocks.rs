@@ -2,7 +2,8 @@
 //! a grid of [`WORK_RES_M`] cells (a block free where all its cells are),
 //! and the fine free cells take the label of their block, or, where their
 //! block is not free (beside walls, in narrow gaps), of the labelled cells
-//! they connect to, grown breadth first.
+//! they connect to, grown breadth first. Not in the survey (Bormann et al.
+//! 2016): its methods run on the map's own cells.
 
 use std::collections::{BTreeMap, VecDeque};
 
@@ -19,13 +20,31 @@ use crate::rooms::{RoomParams, Rooms, door_list, grow, merge_small_regions};
 /// stay: a block holding any obstacle is one).
 pub(super) const WORK_RES_M: f64 = 0.1;
 
+/// Most cells per block side (a map finer than a millimetre and a half
+/// is searched on blocks finer than 0.1 m).
+const MOST_SIDE: usize = 64;
+
 /// Cells per block side for a map of `resolution` (1: no blocks).
 pub(super) fn block_side(resolution: f64) -> usize {
     if resolution.is_finite() && resolution > 0.0 {
-        ((WORK_RES_M / resolution) * (1.0 + 1e-9)).floor().max(1.0) as usize
+        ((WORK_RES_M / resolution) * (1.0 + 1e-9))
+            .floor()
+            .clamp(1.0, MOST_SIDE as f64) as usize
     } else {
         1
     }
+}
+
+/// The row-major indices of the 4-neighbours of index `i` in a `w × h`
+/// grid: above, left, right, below (`None` off the grid).
+fn beside(i: usize, w: usize, h: usize) -> [Option<usize>; 4] {
+    let (r, c) = (i / w, i % w);
+    [
+        (r > 0).then(|| i - w),
+        (c > 0).then(|| i - 1),
+        (c + 1 < w).then_some(i + 1),
+        (r + 1 < h).then_some(i + w),
+    ]
 }
 
 /// Rows `r0..r1` and columns `c0..c1` of a grid: the part that holds every
@@ -109,14 +128,12 @@ pub(super) fn doorways_blocked(
             if !cells[i] {
                 continue;
             }
-            let (r, c) = (i / w, i % w);
-            let near = [
-                (r > 0).then(|| i - w),
-                (c > 0).then(|| i - 1),
-                (c + 1 < w).then_some(i + 1),
-                (r + 1 < h).then_some(i + w),
-            ];
-            if let Some(l) = near.into_iter().flatten().map(|n| out[n]).find(|&l| l != 0) {
+            if let Some(l) = beside(i, w, h)
+                .into_iter()
+                .flatten()
+                .map(|n| out[n])
+                .find(|&l| l != 0)
+            {
                 seeds.push((i, l));
             }
         }
@@ -187,17 +204,10 @@ pub(super) fn doorways_blocked(
     // one of other rooms: only there are the cells' neighbours read (bands
     // of block rows in parallel, their pairs in band order).
     let touches = |b: usize| {
-        let (br, bc) = (b / bw, b % bw);
-        let near = [
-            (br > 0).then(|| b - bw),
-            (bc > 0).then(|| b - 1),
-            (bc + 1 < bw).then_some(b + 1),
-            (br + 1 < bh).then_some(b + bw),
-        ];
         let here = range[b];
         here.1 > 0
             && (here.0 != here.1
-                || near
+                || beside(b, bw, bh)
                     .into_iter()
                     .flatten()
                     .any(|n| range[n].1 > 0 && range[n] != here))
@@ -216,14 +226,7 @@ pub(super) fn doorways_blocked(
                     if a == 0 {
                         continue;
                     }
-                    let (r, c) = (i / w, i % w);
-                    let near = [
-                        (r > 0).then(|| i - w),
-                        (c > 0).then(|| i - 1),
-                        (c + 1 < w).then_some(i + 1),
-                        (r + 1 < h).then_some(i + w),
-                    ];
-                    for n in near.into_iter().flatten() {
+                    for n in beside(i, w, h).into_iter().flatten() {
                         let b = s[n];
                         if b != 0 && b != a {
                             pairs.push((a.min(b), a.max(b), i, n));

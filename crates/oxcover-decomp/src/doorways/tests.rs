@@ -86,6 +86,8 @@ fn blocks_are_a_tenth_of_a_metre_or_so() {
     assert_eq!(block_side(0.1), 1);
     assert_eq!(block_side(f64::NAN), 1);
     assert_eq!(block_side(0.0), 1);
+    // A map finer than is useful: blocks of at most 64 cells a side.
+    assert_eq!(block_side(1e-9), 64);
 }
 
 #[test]
