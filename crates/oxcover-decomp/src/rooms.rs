@@ -35,6 +35,7 @@
 //! regions no seed reaches are rooms of their own here (the survey leaves
 //! them unlabelled), so every free cell belongs to exactly one room.
 
+use rayon::prelude::*;
 use std::collections::{BTreeMap, VecDeque};
 
 use oxcover_grid::edt::boundary_distance_sq4;
@@ -298,6 +299,36 @@ pub(crate) fn label_the_rest(free: &Grid<bool>, labels: &mut Grid<u32>, mut next
     next
 }
 
+/// How many cells hold each label (by label, 0 included, up to the
+/// largest), counted a run of equal labels at a time: a count bumped cell
+/// by cell waits on its own last store.
+pub(crate) fn label_counts(labels: &[u32]) -> Vec<usize> {
+    // (Stretches of 64 Ki cells in parallel, their counts added.)
+    let count = |labels: &[u32]| {
+        let mut size: Vec<usize> = Vec::new();
+        let mut i = 0;
+        while let Some(&l) = labels.get(i) {
+            let run = labels[i..].iter().take_while(|&&m| m == l).count();
+            if l as usize >= size.len() {
+                size.resize(l as usize + 1, 0);
+            }
+            size[l as usize] += run;
+            i += run;
+        }
+        size
+    };
+    labels
+        .par_chunks(1 << 16)
+        .map(count)
+        .reduce(Vec::new, |a, b| {
+            let (mut long, short) = if a.len() >= b.len() { (a, b) } else { (b, a) };
+            for (x, y) in long.iter_mut().zip(short) {
+                *x += y;
+            }
+            long
+        })
+}
+
 /// Breadth-first growth of labelled cells over unlabelled free cells.
 pub(crate) fn grow(free: &Grid<bool>, labels: &mut Grid<u32>, queue: &mut VecDeque<Cell>) {
     while let Some(c) = queue.pop_front() {
@@ -322,30 +353,42 @@ pub fn merge_small_regions(labels: &mut Grid<u32>, min_cells: f64) {
     if n < 2 {
         return;
     }
-    let mut sizes = vec![0usize; n];
+    let mut sizes = label_counts(labels.as_slice());
+    sizes.remove(0);
+    let small: Vec<bool> = sizes.iter().map(|&k| (k as f64) < min_cells).collect();
+    if !small.contains(&true) {
+        return;
+    }
+    // Only a small region's contacts are ever read (its own, and those of
+    // the small regions merged into it).
     let mut contacts: Vec<BTreeMap<u32, usize>> = vec![BTreeMap::new(); n];
     // Each 4-neighbour pair once (a cell and the cells right of and below
     // it), counted for both sides: by row slices, as this reads every cell.
     let mut touch = |l: u32, m: u32| {
-        if l != 0 && m != 0 && l != m {
+        if l != 0 && m != 0 && l != m && (small[l as usize - 1] || small[m as usize - 1]) {
             *contacts[l as usize - 1].entry(m).or_default() += 1;
             *contacts[m as usize - 1].entry(l).or_default() += 1;
         }
     };
+    // (A run of one label at a time: its right end, and the cells below
+    // it where they are not all of its label.)
     for row in 0..labels.height() {
         let here = labels.row(row);
-        for (k, &l) in here.iter().enumerate() {
-            if l != 0 {
-                sizes[l as usize - 1] += 1;
-            }
-            if let Some(&right) = here.get(k + 1) {
+        let below = (row + 1 < labels.height()).then(|| labels.row(row + 1));
+        let mut a = 0;
+        while let Some(&l) = here.get(a) {
+            let b = a + here[a..].iter().take_while(|&&m| m == l).count();
+            if let Some(&right) = here.get(b) {
                 touch(l, right);
             }
-        }
-        if row + 1 < labels.height() {
-            for (&l, &below) in here.iter().zip(labels.row(row + 1)) {
-                touch(l, below);
+            if let Some(under) = below.map(|v| &v[a..b]) {
+                if under.iter().any(|&m| m != l) {
+                    for &m in under {
+                        touch(l, m);
+                    }
+                }
             }
+            a = b;
         }
     }
     let mut parent: Vec<u32> = (1..=n as u32).collect();
@@ -381,10 +424,11 @@ pub fn merge_small_regions(labels: &mut Grid<u32>, min_cells: f64) {
             }
         }
     }
+    let root: Vec<u32> = (0..=n as u32)
+        .map(|l| if l == 0 { 0 } else { find(&parent, l) })
+        .collect();
     for l in labels.as_mut_slice() {
-        if *l != 0 {
-            *l = find(&parent, *l);
-        }
+        *l = root[*l as usize];
     }
 }
 

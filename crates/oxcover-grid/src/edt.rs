@@ -187,7 +187,9 @@ fn transform(sources: &Grid<bool>, outside: bool, kernel: Kernel) -> Grid<u64> {
     // column each side when the outside is a source.
     let pad = usize::from(outside);
     let m = w + 2 * pad;
-    let mut g = vec![INFINITE; w * hgt];
+    // (Every value is written by the row pass: zeroed memory, which the
+    // allocator need not fill.)
+    let mut g = vec![0; w * hgt];
     g.par_chunks_mut(w * ROWS).enumerate().for_each_init(
         || (Envelope::default(), vec![0u64; m]),
         |(env, line), (block, out)| {
@@ -280,24 +282,55 @@ fn column_pass<V: Copy + Ord>(
 }
 
 /// The row pass over one padded `line` of column-pass values, into `out`.
+///
+/// A source in the line itself (value 0) splits it: between two sources
+/// `s1 < x < s2`, every candidate left of `s1` (or right of `s2`) is
+/// further than `s1` (`s2`) with no smaller value, so each run of
+/// non-source cells takes the envelope of its own cells and the sources
+/// that bound it, and the sources are 0. The same values as one envelope
+/// over the line, in a fraction of the work where sources are many.
 fn row_pass(env: &mut Envelope, line: &[u64], pad: usize, kernel: Kernel, out: &mut [u64]) {
     let m = line.len();
+    let mut a = 0;
+    while a < m {
+        if line[a] == 0 {
+            if let Some(o) = a.checked_sub(pad).and_then(|x| out.get_mut(x)) {
+                *o = 0;
+            }
+            a += 1;
+            continue;
+        }
+        let b = line[a..].iter().position(|&v| v == 0).map_or(m, |n| a + n);
+        // Candidates: the run `a..b` and the sources either side of it.
+        let (lo, hi) = (a.saturating_sub(1), (b + 1).min(m));
+        run_pass(env, line, (lo, hi), kernel);
+        for (xp, &v) in line.iter().enumerate().take(b).skip(a) {
+            let Some(o) = xp.checked_sub(pad).and_then(|x| out.get_mut(x)) else {
+                continue;
+            };
+            *o = if kernel == Kernel::Boundary {
+                v.min(env.eval(2 * xp as i64))
+            } else {
+                env.eval(xp as i64)
+            };
+        }
+        a = b;
+    }
+}
+
+/// Builds `env` over the candidates `lo..hi` of `line`: for the boundary
+/// kernel the cell edges `lo..=hi` (edge `i`, doubled coordinate `2i − 1`,
+/// between cells `i − 1` and `i`, with the smaller value of the two), for
+/// the centre kernel the cells.
+fn run_pass(env: &mut Envelope, line: &[u64], (lo, hi): (usize, usize), kernel: Kernel) {
     if kernel == Kernel::Boundary {
-        // Edge `i` (doubled coordinate 2i − 1) lies between cells i−1 and i.
-        env.build((0..=m).map(|i| {
+        env.build((lo..=hi).map(|i| {
             let left = if i > 0 { line[i - 1] } else { INFINITE };
             let right = line.get(i).copied().unwrap_or(INFINITE);
             (2 * i as i64 - 1, left.min(right))
         }));
-        for (x, o) in out.iter_mut().enumerate() {
-            let xp = x + pad;
-            *o = line[xp].min(env.eval(2 * xp as i64));
-        }
     } else {
-        env.build(line.iter().enumerate().map(|(q, &v)| (q as i64, v)));
-        for (x, o) in out.iter_mut().enumerate() {
-            *o = env.eval((x + pad) as i64);
-        }
+        env.build((lo..hi).map(|q| (q as i64, line[q])));
     }
 }
 

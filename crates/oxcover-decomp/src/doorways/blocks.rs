@@ -70,11 +70,23 @@ pub(super) fn doorways_blocked(
     count.par_chunks_mut(bw).enumerate().for_each(|(br, out)| {
         for r in r0 + br * k..(r0 + (br + 1) * k).min(r1) {
             let row = &cells[r * w + c0..r * w + c1];
-            let runs = row.chunks_exact(k);
-            let tail = runs.remainder();
-            for (n, run) in out.iter_mut().zip(runs) {
-                *n += run.iter().map(|&f| u32::from(f)).sum::<u32>();
-            }
+            let tail = if k == 2 {
+                // (The common case, 5 cm cells, with pairs the compiler
+                // can add side by side.)
+                let pairs = row.chunks_exact(2);
+                let tail = pairs.remainder();
+                for (n, pair) in out.iter_mut().zip(pairs) {
+                    *n += u32::from(pair[0]) + u32::from(pair[1]);
+                }
+                tail
+            } else {
+                let runs = row.chunks_exact(k);
+                let tail = runs.remainder();
+                for (n, run) in out.iter_mut().zip(runs) {
+                    *n += run.iter().map(|&f| u32::from(f)).sum::<u32>();
+                }
+                tail
+            };
             if let Some(n) = out.get_mut(row.len() / k) {
                 *n += tail.iter().map(|&f| u32::from(f)).sum::<u32>();
             }
@@ -149,16 +161,22 @@ pub(super) fn doorways_blocked(
     // Each room's size and first cell from its free blocks and its cells
     // in the others.
     let blocks_rooms = part.areas.len();
-    let top_left = |b: usize| (r0 + (b / bw) * k) * w + c0 + (b % bw) * k;
     // (And the least and greatest room in each block, (0, 0) for none.)
     let mut size = vec![0usize; blocks_rooms + 1];
     let mut at = vec![usize::MAX; blocks_rooms + 1];
     let mut range = vec![(0u32, 0u32); bw * bh];
-    for b in (0..bw * bh).filter(|&b| count[b] == full) {
-        let l = block_labels[b];
-        size[l as usize] += full as usize;
-        at[l as usize] = at[l as usize].min(top_left(b));
-        range[b] = (l, l);
+    // (Block by block in row-major order: the first block of a room is
+    // its top-left one.)
+    for br in 0..bh {
+        for bc in (0..bw).filter(|&bc| count[br * bw + bc] == full) {
+            let b = br * bw + bc;
+            let l = block_labels[b] as usize;
+            size[l] += full as usize;
+            if at[l] == usize::MAX {
+                at[l] = (r0 + br * k) * w + c0 + bc * k;
+            }
+            range[b] = (l as u32, l as u32);
+        }
     }
     let mut unreached = false;
     for &b in &mixed {
@@ -203,14 +221,17 @@ pub(super) fn doorways_blocked(
     // Two rooms touch only in a block of two rooms or where a block meets
     // one of other rooms: only there are the cells' neighbours read (bands
     // of block rows in parallel, their pairs in band order).
-    let touches = |b: usize| {
+    let touches = |br: usize, bc: usize| {
+        let b = br * bw + bc;
         let here = range[b];
         here.1 > 0
-            && (here.0 != here.1
-                || beside(b, bw, bh)
-                    .into_iter()
-                    .flatten()
-                    .any(|n| range[n].1 > 0 && range[n] != here))
+            && (here.0 != here.1 || {
+                let other = |n: usize| range[n].1 > 0 && range[n] != here;
+                (br > 0 && other(b - bw))
+                    || (bc > 0 && other(b - 1))
+                    || (bc + 1 < bw && other(b + 1))
+                    || (br + 1 < bh && other(b + bw))
+            })
     };
     numbered(labels, &size, &first, min_cells, |labels| {
         let s = labels.as_slice();
@@ -218,9 +239,9 @@ pub(super) fn doorways_blocked(
             .into_par_iter()
             .map(|br| {
                 let mut pairs = Vec::new();
-                for i in (br * bw..(br + 1) * bw)
-                    .filter(|&b| touches(b))
-                    .flat_map(cells_of)
+                for i in (0..bw)
+                    .filter(|&bc| touches(br, bc))
+                    .flat_map(|bc| cells_of(br * bw + bc))
                 {
                     let a = s[i];
                     if a == 0 {

@@ -71,34 +71,47 @@ pub(super) fn extension_cuts(
         .into_par_iter()
         .map(|y| {
             let (mut out, mut ends) = (Vec::new(), Vec::new());
+            let (wu, hu) = (free.width(), free.height());
             for x in 0..w {
-                let i = y as usize * free.width() + x as usize;
+                let i = y as usize * wu + x as usize;
                 if cells[i] {
                     continue;
                 }
-                for (dx, dy) in [(1, 0), (0, 1), (-1, 0), (0, -1)] {
-                    if !is_free(x + dx, y + dy) {
-                        continue;
-                    }
+                // The free cells beside it (most obstacle cells have none).
+                let (xu, yu) = (x as usize, y as usize);
+                let near = [
+                    xu + 1 < wu && cells[i + 1],
+                    yu + 1 < hu && cells[i + wu],
+                    xu > 0 && cells[i - 1],
+                    yu > 0 && cells[i - wu],
+                ];
+                if !near.contains(&true) {
+                    continue;
+                }
+                for (&(dx, dy), _) in [(1, 0), (0, 1), (-1, 0), (0, -1)]
+                    .iter()
+                    .zip(near)
+                    .filter(|(_, f)| *f)
+                {
                     let n = (-dy, dx);
-                    // A thin wall behind the end, not a wall across it
-                    // that thins into one (a room's wall meeting a short
-                    // piece of corridor wall between two doors).
-                    let across: Option<Vec<isize>> = (0..=behind)
-                        .map(|k| {
-                            let (bx, by) = (x - dx * k, y - dy * k);
-                            if is_free(bx, by) {
-                                None
-                            } else {
-                                thickness(bx, by, n)
-                            }
-                        })
-                        .collect();
-                    let wall = across.is_some_and(|t| {
-                        let least = t.iter().copied().min().unwrap_or(0);
-                        t.first()
-                            .is_none_or(|&first| !thins_out(first as f64, least as f64, margin))
+                    // A thin wall behind the end (thin for `behind` cells
+                    // on), not a wall across it that thins into one (a
+                    // room's wall meeting a short piece of corridor wall
+                    // between two doors).
+                    let mut across = (0..=behind).map(|k| {
+                        let (bx, by) = (x - dx * k, y - dy * k);
+                        if is_free(bx, by) {
+                            None
+                        } else {
+                            thickness(bx, by, n)
+                        }
                     });
+                    let Some(Some(first)) = across.next() else {
+                        continue;
+                    };
+                    let least = across.try_fold(first, |m, t| t.map(|t| m.min(t)));
+                    let wall =
+                        least.is_some_and(|least| !thins_out(first as f64, least as f64, margin));
                     if !wall {
                         continue;
                     }

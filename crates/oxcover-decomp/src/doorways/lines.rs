@@ -34,12 +34,24 @@ const STRAIGHT_COS: f64 = -0.98;
 /// cell: the two nearest obstacle points lie on opposite sides.
 const OPPOSITE_COS: f64 = -0.8;
 
-/// For each whole clearance `R` up to `most`, the offsets of the cells
-/// whose square may hold a point at a distance between `R` and `R + 2.5`
-/// from a cell's centre: where [`critical_line`] looks for the nearest
-/// obstacle points of a cell of clearance in `R..R + 1` (nothing is nearer
-/// than the clearance).
-pub(super) fn rings(most: f64) -> Vec<Vec<(isize, isize)>> {
+/// A cell of a ring round a cell: its offset (rows, columns), and the
+/// point of its square nearest the centre cell's centre relative to that
+/// centre, with its distance (exact in floating point, the same for every
+/// centre: the offsets are whole or half cells).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct RingCell {
+    dr: isize,
+    dc: isize,
+    near: Pt,
+    dist: f64,
+}
+
+/// For each whole clearance `R` up to `most`, the cells whose square may
+/// hold a point at a distance between `R` and `R + 2.5` from a cell's
+/// centre: where [`critical_line`] looks for the nearest obstacle points
+/// of a cell of clearance in `R..R + 1` (nothing is nearer than the
+/// clearance).
+pub(super) fn rings(most: f64) -> Vec<Vec<RingCell>> {
     let top = most.max(0.0).ceil() as usize + 1;
     (0..=top)
         .map(|big_r| {
@@ -51,6 +63,20 @@ pub(super) fn rings(most: f64) -> Vec<Vec<(isize, isize)>> {
                     let d = (dr as f64).hypot(dc as f64);
                     d >= lo && d <= hi
                 })
+                .map(|(dr, dc)| {
+                    // The square's point nearest the centre (0.5, 0.5)
+                    // of cell (0, 0), less that centre.
+                    let near = (
+                        0.5f64.clamp(dc as f64, dc as f64 + 1.0) - 0.5,
+                        0.5f64.clamp(dr as f64, dr as f64 + 1.0) - 0.5,
+                    );
+                    RingCell {
+                        dr,
+                        dc,
+                        near,
+                        dist: near.0.hypot(near.1),
+                    }
+                })
                 .collect()
         })
         .collect()
@@ -61,39 +87,38 @@ pub(super) fn rings(most: f64) -> Vec<Vec<(isize, isize)>> {
 /// two such.
 pub(super) fn critical_line(
     free: &Grid<bool>,
-    rings: &[Vec<(isize, isize)>],
+    rings: &[Vec<RingCell>],
     c: Cell,
     r: f64,
 ) -> Option<Cut> {
     let centre = (c.col as f64 + 0.5, c.row as f64 + 0.5);
     let ring = rings.get(r.floor() as usize)?;
-    let mut near: Vec<(Pt, f64)> = Vec::new();
-    for &(dr, dc) in ring {
-        let (row, col) = (c.row as isize + dr, c.col as isize + dc);
-        let inside =
-            row >= 0 && col >= 0 && (row as usize) < free.height() && (col as usize) < free.width();
-        if inside && free[Cell::new(row as usize, col as usize)] {
+    let (w, h, cells) = (free.width(), free.height(), free.as_slice());
+    // Each obstacle point and its offset from the centre and distance.
+    let mut near: Vec<(Pt, Pt, f64)> = Vec::new();
+    for cell in ring {
+        let (row, col) = (c.row as isize + cell.dr, c.col as isize + cell.dc);
+        let inside = row >= 0 && col >= 0 && (row as usize) < h && (col as usize) < w;
+        if inside && cells[row as usize * w + col as usize] {
             continue;
         }
-        // The point of the cell's square nearest the centre.
-        let q = (
-            centre.0.clamp(col as f64, col as f64 + 1.0),
-            centre.1.clamp(row as f64, row as f64 + 1.0),
-        );
-        let d = (q.0 - centre.0).hypot(q.1 - centre.1);
-        if d <= r + 1.5 {
-            near.push((q, d));
+        if cell.dist <= r + 1.5 {
+            let q = (centre.0 + cell.near.0, centre.1 + cell.near.1);
+            near.push((q, cell.near, cell.dist));
         }
     }
     // The shortest pair straight across (a corridor's cross-section, not
     // a slant through it), else the pair farthest apart in angle.
     let mut straight: Option<(f64, Pt, Pt)> = None;
     let mut best: Option<(f64, Pt, Pt)> = None;
-    for (i, &(p, dp)) in near.iter().enumerate() {
-        for &(q, dq) in &near[i + 1..] {
-            let (ux, uy) = (p.0 - centre.0, p.1 - centre.1);
-            let (vx, vy) = (q.0 - centre.0, q.1 - centre.1);
-            let cos = (ux * vx + uy * vy) / (dp * dq).max(1e-9);
+    for (i, &(p, (ux, uy), dp)) in near.iter().enumerate() {
+        for &(q, (vx, vy), dq) in &near[i + 1..] {
+            let (dot, den) = (ux * vx + uy * vy, (dp * dq).max(1e-9));
+            // (Plainly not opposite, without the division.)
+            if dot > OPPOSITE_COS * den * (1.0 - 1e-9) {
+                continue;
+            }
+            let cos = dot / den;
             if cos > OPPOSITE_COS {
                 continue;
             }

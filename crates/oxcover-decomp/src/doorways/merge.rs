@@ -7,6 +7,7 @@ use std::collections::{BTreeMap, VecDeque};
 use oxcover_grid::{Cell, Dir4, Grid};
 
 use super::CutSet;
+use crate::rooms::label_counts;
 
 /// Largest share of the wider space's clearance a cut's half width may
 /// have to keep two regions apart.
@@ -94,18 +95,30 @@ pub(super) fn join_regions(
     let piece_min = PIECE_M2 * per_metre * per_metre;
     // Each region's border cells, and those of them beside a cut.
     let mut border = vec![(0usize, 0usize); count + 1];
-    for c in open.true_cells() {
-        let (mut edge, mut cut) = (false, false);
-        for d in Dir4::ALL {
-            match free.step(c, d) {
-                Some(n) if cuts.on_cut[n] => (edge, cut) = (true, true),
-                Some(n) if free[n] => {}
-                _ => edge = true,
+    let (w, h) = (free.width(), free.height());
+    let (on_cut, open_at) = (cuts.on_cut.as_slice(), open.as_slice());
+    // (A cell is on its region's border where a neighbour is not open:
+    // off the grid, not free, or on a cut.)
+    for r in 0..h {
+        for c in 0..w {
+            let i = r * w + c;
+            if !open_at[i] {
+                continue;
             }
+            let beside = [
+                (r > 0).then(|| i - w),
+                (c > 0).then(|| i - 1),
+                (c + 1 < w).then_some(i + 1),
+                (r + 1 < h).then_some(i + w),
+            ];
+            if beside.iter().all(|n| n.is_some_and(|n| open_at[n])) {
+                continue;
+            }
+            let cut = beside.iter().flatten().any(|&n| on_cut[n]);
+            let b = &mut border[labels.as_slice()[i] as usize];
+            b.0 += 1;
+            b.1 += usize::from(cut);
         }
-        let b = &mut border[labels[c] as usize];
-        b.0 += usize::from(edge);
-        b.1 += usize::from(cut);
     }
     for l in 1..=count as u32 {
         let r = find(&mut parent, l);
@@ -150,10 +163,11 @@ pub(super) fn join_regions(
         let (a, b) = (border[r as usize], border[to as usize]);
         border[keep as usize] = (a.0 + b.0, a.1 + b.1);
     }
+    let root: Vec<u32> = (0..=count as u32)
+        .map(|l| if l == 0 { 0 } else { find(&mut parent, l) })
+        .collect();
     for l in labels.as_mut_slice() {
-        if *l != 0 {
-            *l = find(&mut parent, *l);
-        }
+        *l = root[*l as usize];
     }
 }
 
@@ -161,16 +175,13 @@ pub(super) fn join_regions(
 /// another (a pocket of floor inside a ring of chairs, behind a table)
 /// the label of the nearest larger region, across whatever lies between.
 pub(super) fn join_pockets(labels: &mut Grid<u32>, min_cells: f64) {
-    let top = labels.as_slice().iter().copied().max().unwrap_or(0) as usize;
-    let mut cells: Vec<Vec<Cell>> = vec![Vec::new(); top + 1];
-    let mut size = vec![0usize; top + 1];
-    for &l in labels.as_slice() {
-        size[l as usize] += 1;
-    }
+    let size = label_counts(labels.as_slice());
+    let top = size.len().saturating_sub(1);
     let small = |l: u32| l != 0 && (size[l as usize] as f64) < min_cells;
     if !(1..=top as u32).any(small) {
         return;
     }
+    let mut cells: Vec<Vec<Cell>> = vec![Vec::new(); top + 1];
     let w = labels.width();
     for (i, &l) in labels.as_slice().iter().enumerate() {
         if small(l) {

@@ -112,13 +112,29 @@ pub fn doorways(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     // Work on the free cells' bounding box and a cell round it: nothing
     // outside it is free, so nothing there can change a label.
     let (w, h) = (free.width(), free.height());
-    let (mut r0, mut r1, mut c0, mut c1) = (h, 0, w, 0);
-    for (r, row) in free.as_slice().chunks(w.max(1)).enumerate() {
-        if let (Some(a), Some(b)) = (row.iter().position(|&f| f), row.iter().rposition(|&f| f)) {
-            (r0, r1) = (r0.min(r), r1.max(r + 1));
-            (c0, c1) = (c0.min(a), c1.max(b + 1));
-        }
-    }
+    // (Rows in parallel.)
+    let (r0, r1, c0, c1) = free
+        .as_slice()
+        .par_chunks(w.max(1))
+        .enumerate()
+        .filter_map(|(r, row)| {
+            // (64 cells at a time, or'ed side by side, to the first and
+            // last that hold a free one.)
+            let any = |run: &[bool]| run.iter().fold(false, |x, &f| x | f);
+            let lo = row.chunks(64).position(any)? * 64;
+            let hi = (row.len() - 1) / 64 * 64;
+            let hi = (0..=hi)
+                .rev()
+                .step_by(64)
+                .find(|&i| any(&row[i..(i + 64).min(row.len())]))?;
+            let a = lo + row[lo..].iter().position(|&f| f)?;
+            let b = hi + row[hi..(hi + 64).min(row.len())].iter().rposition(|&f| f)?;
+            Some((r, r + 1, a, b + 1))
+        })
+        .reduce(
+            || (h, 0, w, 0),
+            |x, y| (x.0.min(y.0), x.1.max(y.1), x.2.min(y.2), x.3.max(y.3)),
+        );
     if r0 >= r1 {
         return relabel(Grid::new(w, h, 0), 1.0);
     }
@@ -192,7 +208,7 @@ fn doorways_in(free: &Grid<bool>, params: &RoomParams, grown: usize, find_doors:
     // Doorways are looked for on the floor as if the furniture were not
     // there (a block beside a door would hide it): the free cells and the
     // clearance without it.
-    let floor = Grid::from_fn(w, h, |c| free[c] || furniture[c]);
+    let floor = free.zip_map(&furniture, |&f, &b| f || b);
     let d4 = boundary_distance_sq4(&floor.map(|&f| !f), true);
     let clearance = |c: Cell| (d4[c] as f64).sqrt() / 2.0;
     let rings = rings(door_half);
@@ -233,16 +249,21 @@ fn doorways_in(free: &Grid<bool>, params: &RoomParams, grown: usize, find_doors:
         cells,
         on_cut,
     };
-    let open = Grid::from_fn(w, h, |c| free[c] && !cuts.on_cut[c]);
+    let open = free.zip_map(&cuts.on_cut, |&f, &cut| f && !cut);
     let regions = components4(&open);
     let mut labels = regions.labels;
     let count = regions.sizes.len();
     // Each region's widest clearance.
-    let mut peak = vec![0.0f64; count + 1];
-    for c in open.true_cells() {
-        let l = labels[c] as usize;
-        peak[l] = peak[l].max(clearance(c));
+    let mut widest = vec![0u64; count + 1];
+    let cells = open
+        .as_slice()
+        .iter()
+        .zip(labels.as_slice())
+        .zip(d4.as_slice());
+    for ((_, &l), &d) in cells.filter(|((o, _), _)| **o) {
+        widest[l as usize] = widest[l as usize].max(d);
     }
+    let peak: Vec<f64> = widest.iter().map(|&d| (d as f64).sqrt() / 2.0).collect();
     merge::join_regions(
         free,
         &open,
@@ -292,15 +313,16 @@ fn furniture(blocked: &Grid<bool>, most: f64, thick: usize) -> Grid<bool> {
     let b = blocked.as_slice();
     let mut state = vec![NEW; b.len()];
     let (mut island, mut stack) = (Vec::new(), Vec::new());
-    let beside_free = |i: usize| {
-        let (r, c) = (i / w, i % w);
+    let beside_free = |i: usize, (r, c): (usize, usize)| {
         (c > 0 && !b[i - 1])
             || (c + 1 < w && !b[i + 1])
             || (r > 0 && !b[i - w])
             || (r + 1 < h && !b[i + w])
     };
-    for start in 0..b.len() {
-        if !b[start] || state[start] != NEW || !beside_free(start) {
+    let cells = (0..h).flat_map(|r| (0..w).map(move |c| (r, c)));
+    for (r, c) in cells {
+        let start = r * w + c;
+        if !b[start] || state[start] != NEW || !beside_free(start, (r, c)) {
             continue;
         }
         island.clear();
@@ -365,17 +387,23 @@ fn relabel(labels: Grid<u32>, min_cells: f64) -> Rooms {
 fn sizes(labels: &Grid<u32>) -> (Vec<usize>, Vec<u32>) {
     let mut size: Vec<usize> = Vec::new();
     let mut first: Vec<u32> = Vec::new();
-    for &l in labels.as_slice() {
-        if l != 0 {
-            let l = l as usize;
-            if l >= size.len() {
-                size.resize(l + 1, 0);
-            }
-            if size[l] == 0 {
-                first.push(l as u32);
-            }
-            size[l] += 1;
+    // (A run of equal labels at a time, as `label_counts`.)
+    let s = labels.as_slice();
+    let mut i = 0;
+    while let Some(&l) = s.get(i) {
+        let run = s[i..].iter().take_while(|&&m| m == l).count();
+        i += run;
+        if l == 0 {
+            continue;
         }
+        let l = l as usize;
+        if l >= size.len() {
+            size.resize(l + 1, 0);
+        }
+        if size[l] == 0 {
+            first.push(l as u32);
+        }
+        size[l] += run;
     }
     (size, first)
 }
