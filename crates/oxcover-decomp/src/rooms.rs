@@ -378,6 +378,11 @@ pub fn merge_small_regions(labels: &mut Grid<u32>, min_cells: f64) {
         let mut a = 0;
         while let Some(&l) = here.get(a) {
             let b = a + here[a..].iter().take_while(|&&m| m == l).count();
+            if l == 0 {
+                // (Unlabelled cells touch nothing.)
+                a = b;
+                continue;
+            }
             if let Some(&right) = here.get(b) {
                 touch(l, right);
             }
