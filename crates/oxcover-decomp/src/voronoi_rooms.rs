@@ -283,10 +283,20 @@ pub(crate) fn axis_cells_in(
                 .filter(|&(_, (&f, v))| f && range.contains(v))
             {
                 let (ri, ci) = (r as isize, col as isize);
-                let crest = LINES.iter().any(|&(dr, dc)| {
-                    let (a, b) = (at(ri + dr, ci + dc), at(ri - dr, ci - dc));
-                    v >= a && v >= b && (v > a || v > b)
-                });
+                let crest = if r > 0 && col > 0 && r + 1 < h && col + 1 < w {
+                    // (Inside the grid's frame: the neighbours by offset.)
+                    let i = r * w + col;
+                    let at = |j: usize| if fs[j] { ds[j] } else { 0 };
+                    [1, w, w + 1, w - 1].iter().any(|&o| {
+                        let (a, b) = (at(i + o), at(i - o));
+                        v >= a && v >= b && (v > a || v > b)
+                    })
+                } else {
+                    LINES.iter().any(|&(dr, dc)| {
+                        let (a, b) = (at(ri + dr, ci + dc), at(ri - dr, ci - dc));
+                        v >= a && v >= b && (v > a || v > b)
+                    })
+                };
                 if crest {
                     out.push(Cell::new(r, col));
                 }

@@ -244,22 +244,23 @@ fn column_pass<V: Copy + Ord>(
     (none_value, h): (V, impl Fn(i64) -> V),
 ) -> Vec<V> {
     let sw = cols.len();
-    let mut g = vec![none_value; sw * hgt];
+    // (Row by row appended: the values are written once, not filled
+    // first.)
+    let mut g = Vec::with_capacity(sw * hgt);
     let none = if outside { -1 } else { i64::MIN };
     let mut last = vec![none; sw];
     for r in 0..hgt {
-        let (row, out) = (
-            &src[r * w + cols.start..r * w + cols.end],
-            &mut g[r * sw..(r + 1) * sw],
-        );
-        for c in 0..sw {
-            if row[c] {
-                last[c] = r as i64;
+        let row = &src[r * w + cols.start..r * w + cols.end];
+        g.extend(row.iter().zip(last.iter_mut()).map(|(&source, last)| {
+            if source {
+                *last = r as i64;
             }
-            if last[c] != i64::MIN {
-                out[c] = h(r as i64 - last[c]);
+            if *last == i64::MIN {
+                none_value
+            } else {
+                h(r as i64 - *last)
             }
-        }
+        }));
     }
     let none = if outside { hgt as i64 } else { i64::MIN };
     let next = &mut last;

@@ -161,10 +161,12 @@ pub(super) fn doorways_blocked(
     // Each room's size and first cell from its free blocks and its cells
     // in the others.
     let blocks_rooms = part.areas.len();
-    // (And the least and greatest room in each block, (0, 0) for none.)
+    // (And the least and greatest room in each block, packed high and low
+    // in one word, 0 for none.)
     let mut size = vec![0usize; blocks_rooms + 1];
     let mut at = vec![usize::MAX; blocks_rooms + 1];
-    let mut range = vec![(0u32, 0u32); bw * bh];
+    let mut range = vec![0u64; bw * bh];
+    let pack = |lo: u32, hi: u32| (u64::from(lo) << 32) | u64::from(hi);
     // (Block by block in row-major order: the first block of a room is
     // its top-left one.)
     for br in 0..bh {
@@ -175,7 +177,7 @@ pub(super) fn doorways_blocked(
             if at[l] == usize::MAX {
                 at[l] = (r0 + br * k) * w + c0 + bc * k;
             }
-            range[b] = (l as u32, l as u32);
+            range[b] = pack(l as u32, l as u32);
         }
     }
     let mut unreached = false;
@@ -192,7 +194,7 @@ pub(super) fn doorways_blocked(
             }
         }
         if hi > 0 {
-            range[b] = (lo, hi);
+            range[b] = pack(lo, hi);
         }
     }
     if unreached {
@@ -224,9 +226,10 @@ pub(super) fn doorways_blocked(
     let touches = |br: usize, bc: usize| {
         let b = br * bw + bc;
         let here = range[b];
-        here.1 > 0
-            && (here.0 != here.1 || {
-                let other = |n: usize| range[n].1 > 0 && range[n] != here;
+        let some = |r: u64| r as u32 > 0;
+        some(here)
+            && ((here >> 32) as u32 != here as u32 || {
+                let other = |n: usize| some(range[n]) && range[n] != here;
                 (br > 0 && other(b - bw))
                     || (bc > 0 && other(b - 1))
                     || (bc + 1 < bw && other(b + 1))

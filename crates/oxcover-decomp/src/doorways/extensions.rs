@@ -24,6 +24,7 @@ const EXT_WALL_M: f64 = 1.0;
 /// for [`EXT_WALL_M`] on one side at least.
 pub(super) fn extension_cuts(
     free: &Grid<bool>,
+    edges: &[Vec<u32>],
     door_half: f64,
     per_metre: f64,
     wall_half: f64,
@@ -72,22 +73,16 @@ pub(super) fn extension_cuts(
         .map(|y| {
             let (mut out, mut ends) = (Vec::new(), Vec::new());
             let (wu, hu) = (free.width(), free.height());
-            for x in 0..w {
-                let i = y as usize * wu + x as usize;
-                if cells[i] {
-                    continue;
-                }
-                // The free cells beside it (most obstacle cells have none).
-                let (xu, yu) = (x as usize, y as usize);
+            for &x in &edges[y as usize] {
+                let (x, xu, yu) = (x as isize, x as usize, y as usize);
+                let i = yu * wu + xu;
+                // The free cells beside it.
                 let near = [
                     xu + 1 < wu && cells[i + 1],
                     yu + 1 < hu && cells[i + wu],
                     xu > 0 && cells[i - 1],
                     yu > 0 && cells[i - wu],
                 ];
-                if !near.contains(&true) {
-                    continue;
-                }
                 for (&(dx, dy), _) in [(1, 0), (0, 1), (-1, 0), (0, -1)]
                     .iter()
                     .zip(near)

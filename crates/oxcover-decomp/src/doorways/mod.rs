@@ -193,17 +193,19 @@ fn doorways_in(free: &Grid<bool>, params: &RoomParams, grown: usize, find_doors:
     );
     let thin_margin = THINS_OUT_M * per_metre;
     let blocked = free.map(|&f| !f);
+    let edges = edge_cells(free);
     // The furniture and the walls continued across openings side by side
     // (each the same whatever the thread count).
     let (furniture, extended) = rayon::join(
         || {
             furniture(
                 &blocked,
+                &edges,
                 ISLAND_M2 * per_metre * per_metre,
                 (ISLAND_THICK_M * per_metre).round().max(2.0) as usize + grown,
             )
         },
-        || extensions::extension_cuts(free, door_half, per_metre, wall_half),
+        || extensions::extension_cuts(free, &edges, door_half, per_metre, wall_half),
     );
     // Doorways are looked for on the floor as if the furniture were not
     // there (a block beside a door would hide it): the free cells and the
@@ -294,17 +296,55 @@ fn doorways_in(free: &Grid<bool>, params: &RoomParams, grown: usize, find_doors:
     }
 }
 
+/// Each row's obstacle cells beside a free one (4-neighbours; columns in
+/// order): where walls and furniture are looked for. (Rows in parallel,
+/// each a mask of whole rows or'ed side by side, then read.)
+fn edge_cells(free: &Grid<bool>) -> Vec<Vec<u32>> {
+    let (w, h) = (free.width(), free.height());
+    let cells = free.as_slice();
+    (0..h)
+        .into_par_iter()
+        .map_init(
+            || vec![false; w],
+            |near, r| {
+                let row = &cells[r * w..(r + 1) * w];
+                near.fill(false);
+                for (n, pair) in near.iter_mut().skip(1).zip(row.windows(2)) {
+                    *n |= pair[0];
+                }
+                for (n, pair) in near.iter_mut().zip(row.windows(2)) {
+                    *n |= pair[1];
+                }
+                for other in [r.checked_sub(1), (r + 1 < h).then_some(r + 1)]
+                    .into_iter()
+                    .flatten()
+                {
+                    for (n, &f) in near.iter_mut().zip(&cells[other * w..(other + 1) * w]) {
+                        *n |= f;
+                    }
+                }
+                row.iter()
+                    .zip(near.iter())
+                    .enumerate()
+                    .filter(|&(_, (&f, &n))| !f && n)
+                    .map(|(c, _)| c as u32)
+                    .collect()
+            },
+        )
+        .collect()
+}
+
 /// The cells of the furniture among the obstacles of `blocked`: those
 /// that stand alone (not touching the grid's edge), under `most` cells,
 /// at least `thick` cells across both ways and filling half their bounding
 /// box at least (a block, not a scanned wall's broken piece).
 ///
-/// Every island has a cell beside a free one, so only those start a
-/// search, and a search gives up (the island is no furniture) at `most`
+/// Every island has a cell beside a free one, so only those (`edges`, as
+/// [`edge_cells`] lists them) start a search, and a search gives up (the island is no furniture) at `most`
 /// cells, at the grid's edge or at a cell an earlier search gave up on:
 /// the large obstacles (the walls, the world outside) are never filled
 /// whole.
-fn furniture(blocked: &Grid<bool>, most: f64, thick: usize) -> Grid<bool> {
+fn furniture(blocked: &Grid<bool>, edges: &[Vec<u32>], most: f64, thick: usize) -> Grid<bool> {
     /// A cell's state: not yet searched, in no furniture, furniture.
     const NEW: u8 = 0;
     const NONE: u8 = 1;
@@ -313,16 +353,12 @@ fn furniture(blocked: &Grid<bool>, most: f64, thick: usize) -> Grid<bool> {
     let b = blocked.as_slice();
     let mut state = vec![NEW; b.len()];
     let (mut island, mut stack) = (Vec::new(), Vec::new());
-    let beside_free = |i: usize, (r, c): (usize, usize)| {
-        (c > 0 && !b[i - 1])
-            || (c + 1 < w && !b[i + 1])
-            || (r > 0 && !b[i - w])
-            || (r + 1 < h && !b[i + w])
-    };
-    let cells = (0..h).flat_map(|r| (0..w).map(move |c| (r, c)));
-    for (r, c) in cells {
-        let start = r * w + c;
-        if !b[start] || state[start] != NEW || !beside_free(start, (r, c)) {
+    let starts = edges
+        .iter()
+        .enumerate()
+        .flat_map(|(r, row)| row.iter().map(move |&c| r * w + c as usize));
+    for start in starts {
+        if state[start] != NEW {
             continue;
         }
         island.clear();
