@@ -432,8 +432,11 @@ pub fn merge_small_regions(labels: &mut Grid<u32>, min_cells: f64) {
     let root: Vec<u32> = (0..=n as u32)
         .map(|l| if l == 0 { 0 } else { find(&parent, l) })
         .collect();
-    for l in labels.as_mut_slice() {
-        *l = root[*l as usize];
+    // (Nothing to write where no region merged.)
+    if root.iter().enumerate().any(|(l, &r)| r != l as u32) {
+        for l in labels.as_mut_slice() {
+            *l = root[*l as usize];
+        }
     }
 }
 

@@ -182,7 +182,13 @@ fn transform(sources: &Grid<bool>, outside: bool, kernel: Kernel) -> Grid<u64> {
     let src = sources.as_slice();
     // Column pass, in stripes of columns side by side: each stripe's
     // values row-major within the stripe.
-    let stripes = column_stripes(src, (w, hgt), outside, INFINITE, |k| kernel.h(k));
+    // (One closure per kernel, so that each pass is compiled for its own.)
+    let stripes = match kernel {
+        Kernel::Boundary => {
+            column_stripes(src, (w, hgt), outside, INFINITE, |k| Kernel::Boundary.h(k))
+        }
+        Kernel::Center => column_stripes(src, (w, hgt), outside, INFINITE, |k| Kernel::Center.h(k)),
+    };
     // Row pass, blocks of rows side by side, on lines padded with a wall
     // column each side when the outside is a source.
     let pad = usize::from(outside);
@@ -282,7 +288,8 @@ fn column_pass<V: Copy + Ord>(
     g
 }
 
-/// The row pass over one padded `line` of column-pass values, into `out`.
+/// The row pass over one padded `line` of column-pass values, into `out`
+/// (zeroed: the sources' values).
 ///
 /// A source in the line itself (value 0) splits it: between two sources
 /// `s1 < x < s2`, every candidate left of `s1` (or right of `s2`) is
@@ -295,10 +302,8 @@ fn row_pass(env: &mut Envelope, line: &[u64], pad: usize, kernel: Kernel, out: &
     let mut a = 0;
     while a < m {
         if line[a] == 0 {
-            if let Some(o) = a.checked_sub(pad).and_then(|x| out.get_mut(x)) {
-                *o = 0;
-            }
-            a += 1;
+            // (A run of sources: 0, as `out` holds already.)
+            a = line[a..].iter().position(|&v| v != 0).map_or(m, |n| a + n);
             continue;
         }
         let b = line[a..].iter().position(|&v| v == 0).map_or(m, |n| a + n);

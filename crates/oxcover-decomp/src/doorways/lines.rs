@@ -1,6 +1,7 @@
 //! Critical lines and the walls at their ends: where a narrow passage
 //! crosses the axis of the free space, and whether a wall ends there in line.
 
+use oxcover_grid::math::fast_floor;
 use oxcover_grid::traverse::traverse;
 use oxcover_grid::{Cell, Grid};
 
@@ -96,13 +97,10 @@ pub(super) fn critical_line(
     let (w, h, cells) = (free.width(), free.height(), free.as_slice());
     // Each obstacle point and its offset from the centre and distance.
     let mut near: Vec<(Pt, Pt, f64)> = Vec::new();
-    for cell in ring {
+    for cell in ring.iter().filter(|cell| cell.dist <= r + 1.5) {
         let (row, col) = (c.row as isize + cell.dr, c.col as isize + cell.dc);
         let inside = row >= 0 && col >= 0 && (row as usize) < h && (col as usize) < w;
-        if inside && cells[row as usize * w + col as usize] {
-            continue;
-        }
-        if cell.dist <= r + 1.5 {
+        if !(inside && cells[row as usize * w + col as usize]) {
             let q = (centre.0 + cell.near.0, centre.1 + cell.near.1);
             near.push((q, cell.near, cell.dist));
         }
@@ -173,7 +171,7 @@ pub(super) fn jamb(
     let (ux, uy) = (dx / len, dy / len);
     let (nx, ny) = (-uy, ux);
     let blocked_at = |x: f64, y: f64| {
-        let (col, row) = (x.floor(), y.floor());
+        let (col, row) = (fast_floor(x), fast_floor(y));
         col < 0.0
             || row < 0.0
             || col as usize >= free.width()
@@ -185,7 +183,7 @@ pub(super) fn jamb(
         x >= 0.0
             && y >= 0.0
             && furniture
-                .get(Cell::new(y.floor() as usize, x.floor() as usize))
+                .get(Cell::new(fast_floor(y) as usize, fast_floor(x) as usize))
                 .is_some_and(|&f| f)
     };
     let steps = run.ceil().max(1.0) as usize;
@@ -254,7 +252,7 @@ pub(super) fn on_furniture(furniture: &Grid<bool>, from: Pt, end: Pt) -> bool {
             cx >= 0.0
                 && cy >= 0.0
                 && furniture
-                    .get(Cell::new(cy.floor() as usize, cx.floor() as usize))
+                    .get(Cell::new(fast_floor(cy) as usize, fast_floor(cx) as usize))
                     .is_some_and(|&f| f)
         })
 }

@@ -177,7 +177,8 @@ pub(super) fn join_regions(
 pub(super) fn join_pockets(labels: &mut Grid<u32>, min_cells: f64) {
     let size = label_counts(labels.as_slice());
     let top = size.len().saturating_sub(1);
-    let small = |l: u32| l != 0 && (size[l as usize] as f64) < min_cells;
+    // (A label merged away holds no cell: no pocket.)
+    let small = |l: u32| l != 0 && size[l as usize] > 0 && (size[l as usize] as f64) < min_cells;
     if !(1..=top as u32).any(small) {
         return;
     }
