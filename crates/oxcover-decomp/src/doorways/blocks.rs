@@ -100,86 +100,95 @@ pub(super) fn doorways_blocked(
         ..*params
     };
     let part = doorways_in(&blocks, &coarse, 1, false);
-    // The cells of a free block take its label.
-    let mut labels = Grid::new(w, h, 0u32);
     let block_labels = part.labels.as_slice();
-    // Each block row's labels cell by cell, copied into each of its rows
-    // (block rows in parallel).
-    labels.as_mut_slice()[r0 * w..r1 * w]
-        .par_chunks_mut(k * w)
-        .enumerate()
-        .for_each(|(br, rows)| {
-            let b = br * bw;
-            let mut spread = vec![0u32; c1 - c0];
-            for (j, run) in spread.chunks_mut(k).enumerate() {
-                let l = if count[b + j] == full {
-                    block_labels[b + j]
-                } else {
-                    0
-                };
-                run.fill(l);
-            }
-            for row in rows.chunks_mut(w) {
-                row[c0..c1].copy_from_slice(&spread);
-            }
-        });
-    let out = labels.as_mut_slice();
-    // The free cells of the other blocks that hold any: those beside a
-    // labelled cell take its label (the first of above, left, right,
-    // below), then the rest are grown into breadth first from them.
-    let mixed: Vec<usize> = (0..bw * bh)
-        .filter(|&b| count[b] > 0 && count[b] < full)
-        .collect();
     let cells_of = |b: usize| {
         let (r, c) = (r0 + (b / bw) * k, c0 + (b % bw) * k);
         (r..(r + k).min(r1)).flat_map(move |r| (c..(c + k).min(c1)).map(move |c| r * w + c))
     };
-    let mut seeds = Vec::new();
-    for &b in &mixed {
-        for i in cells_of(b) {
-            if !cells[i] {
-                continue;
+    let blocks_rooms = part.areas.len();
+    let pack = |lo: u32, hi: u32| (u64::from(lo) << 32) | u64::from(hi);
+    // The fine labels, and beside them what the free blocks alone tell.
+    let ((mut labels, mixed), (mut size, mut at, mut range)) = rayon::join(
+        || {
+            // The cells of a free block take its label.
+            let mut labels = Grid::new(w, h, 0u32);
+            // Each block row's labels cell by cell, copied into each of
+            // its rows (block rows in parallel).
+            labels.as_mut_slice()[r0 * w..r1 * w]
+                .par_chunks_mut(k * w)
+                .enumerate()
+                .for_each(|(br, rows)| {
+                    let b = br * bw;
+                    let mut spread = vec![0u32; c1 - c0];
+                    for (j, run) in spread.chunks_mut(k).enumerate() {
+                        let l = if count[b + j] == full {
+                            block_labels[b + j]
+                        } else {
+                            0
+                        };
+                        run.fill(l);
+                    }
+                    for row in rows.chunks_mut(w) {
+                        row[c0..c1].copy_from_slice(&spread);
+                    }
+                });
+            let out = labels.as_mut_slice();
+            // The free cells of the other blocks that hold any: those
+            // beside a labelled cell take its label (the first of above,
+            // left, right, below), then the rest are grown into breadth
+            // first from them.
+            let mixed: Vec<usize> = (0..bw * bh)
+                .filter(|&b| count[b] > 0 && count[b] < full)
+                .collect();
+            let mut seeds = Vec::new();
+            for &b in &mixed {
+                for i in cells_of(b) {
+                    if !cells[i] {
+                        continue;
+                    }
+                    if let Some(l) = beside(i, w, h)
+                        .into_iter()
+                        .flatten()
+                        .map(|n| out[n])
+                        .find(|&l| l != 0)
+                    {
+                        seeds.push((i, l));
+                    }
+                }
             }
-            if let Some(l) = beside(i, w, h)
-                .into_iter()
-                .flatten()
-                .map(|n| out[n])
-                .find(|&l| l != 0)
-            {
-                seeds.push((i, l));
+            let mut queue: VecDeque<Cell> = VecDeque::with_capacity(seeds.len());
+            for (i, l) in seeds {
+                out[i] = l;
+                queue.push_back(Cell::new(i / w, i % w));
             }
-        }
-    }
-    let mut queue: VecDeque<Cell> = VecDeque::with_capacity(seeds.len());
-    for (i, l) in seeds {
-        out[i] = l;
-        queue.push_back(Cell::new(i / w, i % w));
-    }
-    grow(free, &mut labels, &mut queue);
+            grow(free, &mut labels, &mut queue);
+            (labels, mixed)
+        },
+        || {
+            // Each room's size and first cell from its free blocks (its
+            // cells in the others follow), and the least and greatest
+            // room in each block, packed high and low in one word, 0 for
+            // none. (Block by block in row-major order: the first block
+            // of a room is its top-left one.)
+            let mut size = vec![0usize; blocks_rooms + 1];
+            let mut at = vec![usize::MAX; blocks_rooms + 1];
+            let mut range = vec![0u64; bw * bh];
+            for br in 0..bh {
+                for bc in (0..bw).filter(|&bc| count[br * bw + bc] == full) {
+                    let b = br * bw + bc;
+                    let l = block_labels[b] as usize;
+                    size[l] += full as usize;
+                    if at[l] == usize::MAX {
+                        at[l] = (r0 + br * k) * w + c0 + bc * k;
+                    }
+                    range[b] = pack(l as u32, l as u32);
+                }
+            }
+            (size, at, range)
+        },
+    );
     let per_metre = 1.0 / params.resolution;
     let min_cells = (params.min_area_m2 * per_metre * per_metre).max(1.0);
-    // Each room's size and first cell from its free blocks and its cells
-    // in the others.
-    let blocks_rooms = part.areas.len();
-    // (And the least and greatest room in each block, packed high and low
-    // in one word, 0 for none.)
-    let mut size = vec![0usize; blocks_rooms + 1];
-    let mut at = vec![usize::MAX; blocks_rooms + 1];
-    let mut range = vec![0u64; bw * bh];
-    let pack = |lo: u32, hi: u32| (u64::from(lo) << 32) | u64::from(hi);
-    // (Block by block in row-major order: the first block of a room is
-    // its top-left one.)
-    for br in 0..bh {
-        for bc in (0..bw).filter(|&bc| count[br * bw + bc] == full) {
-            let b = br * bw + bc;
-            let l = block_labels[b] as usize;
-            size[l] += full as usize;
-            if at[l] == usize::MAX {
-                at[l] = (r0 + br * k) * w + c0 + bc * k;
-            }
-            range[b] = pack(l as u32, l as u32);
-        }
-    }
     let mut unreached = false;
     for &b in &mixed {
         let (mut lo, mut hi) = (u32::MAX, 0);

@@ -194,48 +194,50 @@ fn doorways_in(free: &Grid<bool>, params: &RoomParams, grown: usize, find_doors:
     let thin_margin = THINS_OUT_M * per_metre;
     let blocked = free.map(|&f| !f);
     let edges = edge_cells(free);
-    // The furniture and the walls continued across openings side by side
-    // (each the same whatever the thread count).
-    let (furniture, extended) = rayon::join(
+    let rings = rings(door_half);
+    let narrowest_door = (MIN_DOOR_M / 2.0 * per_metre).max(1.5);
+    // The walls continued across openings beside the furniture, the
+    // clearance and the doorways (each the same whatever the thread
+    // count).
+    let ((furniture, d4, cuts), extended) = rayon::join(
         || {
-            furniture(
+            let furniture = furniture(
                 &blocked,
                 &edges,
                 ISLAND_M2 * per_metre * per_metre,
                 (ISLAND_THICK_M * per_metre).round().max(2.0) as usize + grown,
-            )
+            );
+            // Doorways are looked for on the floor as if the furniture
+            // were not there (a block beside a door would hide it): the
+            // free cells and the clearance without it.
+            let floor = free.zip_map(&furniture, |&f, &b| f || b);
+            let d4 = boundary_distance_sq4(&floor.map(|&f| !f), true);
+            let clearance = |c: Cell| (d4[c] as f64).sqrt() / 2.0;
+            // Critical lines of the narrow axis cells, kept where a wall
+            // ends in line. (In parallel, in the axis cells' row-major
+            // order whatever the thread count.)
+            let (lo4, hi4) = (
+                (4.0 * narrowest_door * narrowest_door).floor() as u64,
+                (4.0 * door_half * door_half).ceil() as u64,
+            );
+            let narrow_axis: Vec<Cell> = axis_cells_in(&floor, &d4, lo4..=hi4)
+                .into_iter()
+                .filter(|&c| (narrowest_door..=door_half).contains(&clearance(c)))
+                .collect();
+            let cuts: Vec<Cut> = narrow_axis
+                .par_iter()
+                .filter_map(|&c| critical_line(&floor, &rings, c, clearance(c)))
+                .filter(|cut| {
+                    !on_furniture(&furniture, cut.b, cut.a)
+                        && !on_furniture(&furniture, cut.a, cut.b)
+                        && (jamb(free, &furniture, cut.b, cut.a, run, wall_half, thin_margin)
+                            || jamb(free, &furniture, cut.a, cut.b, run, wall_half, thin_margin))
+                })
+                .collect();
+            (furniture, d4, cuts)
         },
         || extensions::extension_cuts(free, &edges, door_half, per_metre, wall_half),
     );
-    // Doorways are looked for on the floor as if the furniture were not
-    // there (a block beside a door would hide it): the free cells and the
-    // clearance without it.
-    let floor = free.zip_map(&furniture, |&f, &b| f || b);
-    let d4 = boundary_distance_sq4(&floor.map(|&f| !f), true);
-    let clearance = |c: Cell| (d4[c] as f64).sqrt() / 2.0;
-    let rings = rings(door_half);
-    let narrowest_door = (MIN_DOOR_M / 2.0 * per_metre).max(1.5);
-    // Critical lines of the narrow axis cells, kept where a wall ends in line.
-    // (In parallel, in the axis cells' row-major order whatever the thread
-    // count.)
-    let (lo4, hi4) = (
-        (4.0 * narrowest_door * narrowest_door).floor() as u64,
-        (4.0 * door_half * door_half).ceil() as u64,
-    );
-    let narrow_axis: Vec<Cell> = axis_cells_in(&floor, &d4, lo4..=hi4)
-        .into_iter()
-        .filter(|&c| (narrowest_door..=door_half).contains(&clearance(c)))
-        .collect();
-    let cuts: Vec<Cut> = narrow_axis
-        .par_iter()
-        .filter_map(|&c| critical_line(&floor, &rings, c, clearance(c)))
-        .filter(|cut| {
-            !on_furniture(&furniture, cut.b, cut.a)
-                && !on_furniture(&furniture, cut.a, cut.b)
-                && (jamb(free, &furniture, cut.b, cut.a, run, wall_half, thin_margin)
-                    || jamb(free, &furniture, cut.a, cut.b, run, wall_half, thin_margin))
-        })
-        .collect();
     let mut cuts = cuts;
     // (A block of furniture is no wall to continue, nor one to meet.)
     cuts.extend(extended.into_iter().filter(|cut| {
