@@ -99,7 +99,20 @@ pub(super) fn doorways_blocked(
         resolution: params.resolution * k as f64,
         ..*params
     };
-    let part = doorways_in(&blocks, &coarse, 1, false);
+    // The rooms of the blocks; beside them, the fine labels' memory made
+    // ready (written once, so that the pages are in place when the labels
+    // are spread) and the blocks that hold some free cells, not all.
+    let (part, (mut labels, mixed)) = rayon::join(
+        || doorways_in(&blocks, &coarse, 1, false),
+        || {
+            let mut labels = Grid::new(w, h, 0u32);
+            std::hint::black_box(labels.as_mut_slice()).fill(0);
+            let mixed: Vec<usize> = (0..bw * bh)
+                .filter(|&b| count[b] > 0 && count[b] < full)
+                .collect();
+            (labels, mixed)
+        },
+    );
     let block_labels = part.labels.as_slice();
     let cells_of = |b: usize| {
         let (r, c) = (r0 + (b / bw) * k, c0 + (b % bw) * k);
@@ -108,11 +121,9 @@ pub(super) fn doorways_blocked(
     let blocks_rooms = part.areas.len();
     let pack = |lo: u32, hi: u32| (u64::from(lo) << 32) | u64::from(hi);
     // The fine labels, and beside them what the free blocks alone tell.
-    let ((mut labels, mixed), (mut size, mut at, mut range)) = rayon::join(
+    let ((), (mut size, mut at, mut range)) = rayon::join(
         || {
-            // The cells of a free block take its label.
-            let mut labels = Grid::new(w, h, 0u32);
-            // Each block row's labels cell by cell, copied into each of
+            // The cells of a free block take its label. Each block row's labels cell by cell, copied into each of
             // its rows (block rows in parallel).
             labels.as_mut_slice()[r0 * w..r1 * w]
                 .par_chunks_mut(k * w)
@@ -137,9 +148,6 @@ pub(super) fn doorways_blocked(
             // beside a labelled cell take its label (the first of above,
             // left, right, below), then the rest are grown into breadth
             // first from them.
-            let mixed: Vec<usize> = (0..bw * bh)
-                .filter(|&b| count[b] > 0 && count[b] < full)
-                .collect();
             let mut seeds = Vec::new();
             for &b in &mixed {
                 for i in cells_of(b) {
@@ -162,7 +170,6 @@ pub(super) fn doorways_blocked(
                 queue.push_back(Cell::new(i / w, i % w));
             }
             grow(free, &mut labels, &mut queue);
-            (labels, mixed)
         },
         || {
             // Each room's size and first cell from its free blocks (its
