@@ -506,6 +506,19 @@ mod tests {
     use super::*;
     use oxcover_grid::io::ascii_mask;
 
+    #[test]
+    fn label_counts_add_up_across_stretches() {
+        // Runs that cross the parallel stretches' boundaries (64 Ki cells).
+        let labels: Vec<u32> = (0..200_000u32).map(|i| (i / 7_001) % 5).collect();
+        let mut brute = vec![0usize; 5];
+        for &l in &labels {
+            brute[l as usize] += 1;
+        }
+        assert_eq!(label_counts(&labels), brute);
+        assert_eq!(label_counts(&[]), Vec::<usize>::new());
+        assert_eq!(label_counts(&[0, 0, 3]), vec![2, 0, 0, 1]);
+    }
+
     /// `n` square rooms of `side` cells in a row, walls `wall` cells thick,
     /// joined by doors `door` cells wide in the middle of each wall.
     fn row_of_rooms(n: usize, side: usize, wall: usize, door: usize) -> Grid<bool> {

@@ -12,7 +12,11 @@
 //! Both are separable: a column pass (distance to the nearest source in the
 //! column), then a row pass computing `D(x) = min_q G(q) + h(x − q)` by the
 //! lower envelope of parabolas (Felzenszwalb & Huttenlocher), with the
-//! crossing of two parabolas in closed form: O(n) per line.
+//! crossing of two parabolas in closed form: O(n) per line. A line's own
+//! sources split it (our addition, not in the paper): no candidate beyond
+//! the nearest source on either side can win, so each run between two
+//! sources takes the envelope of its own cells and those two, and runs of
+//! sources are skipped (most of a map's obstacle area).
 //!
 //! The boundary kernel is not a parabola, but for `x ≠ q` it is one in the
 //! doubled coordinate: `h(x − q) = (2x − e)²` with `e = 2q ± 1` the edge of

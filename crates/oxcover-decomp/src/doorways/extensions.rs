@@ -21,7 +21,8 @@ const EXT_WALL_M: f64 = 1.0;
 /// [`EXT_WALL_M`] behind it, straight on over free cells to the first
 /// obstacle, where that lies between a door's width and [`EXTENSION_M`]
 /// ahead and is the face of a wall that runs on beside the meeting point
-/// for [`EXT_WALL_M`] on one side at least.
+/// for [`EXT_WALL_M`] on one side at least. The ends are looked for among
+/// `edges`, each row's obstacle cells beside a free one.
 pub(super) fn extension_cuts(
     free: &Grid<bool>,
     edges: &[Vec<u32>],

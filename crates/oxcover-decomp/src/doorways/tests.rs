@@ -108,3 +108,39 @@ fn a_wall_one_cell_thick_is_kept_on_blocks() {
         assert_ne!(r.labels[Cell::new(10, 10)], r.labels[Cell::new(80, 10)]);
     }
 }
+
+#[test]
+fn edge_cells_are_the_obstacle_cells_beside_a_free_one() {
+    // A 3 × 3 room in a 5 × 5 grid: its ring of walls, less the corners,
+    // which touch it diagonally only; and one wall cell inside.
+    let mut free = Grid::from_fn(5, 5, |c: Cell| {
+        (1..4).contains(&c.row) && (1..4).contains(&c.col)
+    });
+    free[Cell::new(2, 2)] = false;
+    let edges = edge_cells(&free);
+    let expect: Vec<Vec<u32>> = vec![
+        vec![1, 2, 3],
+        vec![0, 4],
+        vec![0, 2, 4],
+        vec![0, 4],
+        vec![1, 2, 3],
+    ];
+    assert_eq!(edges, expect);
+    // And by brute force on a random grid.
+    let free = oxcover_grid::random::random_density(37, 23, 0.4, 3).free_mask();
+    let brute: Vec<Vec<u32>> = (0..free.height())
+        .map(|r| {
+            (0..free.width())
+                .filter(|&c| {
+                    let here = Cell::new(r, c);
+                    !free[here]
+                        && Dir4::ALL
+                            .iter()
+                            .any(|&d| free.step(here, d).is_some_and(|n| free[n]))
+                })
+                .map(|c| c as u32)
+                .collect()
+        })
+        .collect();
+    assert_eq!(edge_cells(&free), brute);
+}
