@@ -306,14 +306,11 @@ pub(crate) fn label_counts(labels: &[u32]) -> Vec<usize> {
     // (Stretches of 64 Ki cells in parallel, their counts added.)
     let count = |labels: &[u32]| {
         let mut size: Vec<usize> = Vec::new();
-        let mut i = 0;
-        while let Some(&l) = labels.get(i) {
-            let run = labels[i..].iter().take_while(|&&m| m == l).count();
+        for (l, run) in label_runs(labels) {
             if l as usize >= size.len() {
                 size.resize(l as usize + 1, 0);
             }
             size[l as usize] += run;
-            i += run;
         }
         size
     };
@@ -327,6 +324,18 @@ pub(crate) fn label_counts(labels: &[u32]) -> Vec<usize> {
             }
             long
         })
+}
+
+/// The runs of equal labels in `labels`, in order: each label and how
+/// many cells in a row hold it.
+pub(crate) fn label_runs(labels: &[u32]) -> impl Iterator<Item = (u32, usize)> + '_ {
+    let mut i = 0;
+    std::iter::from_fn(move || {
+        let &l = labels.get(i)?;
+        let run = labels[i..].iter().take_while(|&&m| m == l).count();
+        i += run;
+        Some((l, run))
+    })
 }
 
 /// Breadth-first growth of labelled cells over unlabelled free cells.
@@ -376,20 +385,18 @@ pub fn merge_small_regions(labels: &mut Grid<u32>, min_cells: f64) {
         let here = labels.row(row);
         let below = (row + 1 < labels.height()).then(|| labels.row(row + 1));
         let mut a = 0;
-        while let Some(&l) = here.get(a) {
-            let b = a + here[a..].iter().take_while(|&&m| m == l).count();
-            if l == 0 {
-                // (Unlabelled cells touch nothing.)
-                a = b;
-                continue;
-            }
-            if let Some(&right) = here.get(b) {
-                touch(l, right);
-            }
-            if let Some(under) = below.map(|v| &v[a..b]) {
-                if under.iter().any(|&m| m != l) {
-                    for &m in under {
-                        touch(l, m);
+        for (l, run) in label_runs(here) {
+            let b = a + run;
+            // (Unlabelled cells touch nothing.)
+            if l != 0 {
+                if let Some(&right) = here.get(b) {
+                    touch(l, right);
+                }
+                if let Some(under) = below.map(|v| &v[a..b]) {
+                    if under.iter().any(|&m| m != l) {
+                        for &m in under {
+                            touch(l, m);
+                        }
                     }
                 }
             }

@@ -386,6 +386,45 @@ impl<T> Grid<T> {
         }
     }
 
+    /// The smallest window holding every cell `inside` accepts: rows
+    /// `r0..r1` and columns `c0..c1` as `(r0, r1, c0, c1)`, `None` where it
+    /// accepts none. (Rows in parallel, each read 64 cells at a time to
+    /// its first and last accepted cell.)
+    #[must_use]
+    pub fn bounding_box(
+        &self,
+        inside: impl Fn(&T) -> bool + Sync,
+    ) -> Option<(usize, usize, usize, usize)>
+    where
+        T: Sync,
+    {
+        use rayon::prelude::*;
+        let (w, h) = (self.width, self.height);
+        if w == 0 || h == 0 {
+            return None;
+        }
+        let any = |run: &[T]| run.iter().fold(false, |x, v| x | inside(v));
+        let (r0, r1, c0, c1) = self
+            .data
+            .par_chunks(w)
+            .enumerate()
+            .filter_map(|(r, row)| {
+                let lo = row.chunks(64).position(any)? * 64;
+                let hi = (0..=(w - 1) / 64 * 64)
+                    .rev()
+                    .step_by(64)
+                    .find(|&i| any(&row[i..(i + 64).min(w)]))?;
+                let a = lo + row[lo..].iter().position(&inside)?;
+                let b = hi + row[hi..(hi + 64).min(w)].iter().rposition(&inside)?;
+                Some((r, r + 1, a, b + 1))
+            })
+            .reduce(
+                || (h, 0, w, 0),
+                |x, y| (x.0.min(y.0), x.1.max(y.1), x.2.min(y.2), x.3.max(y.3)),
+            );
+        (r0 < r1).then_some((r0, r1, c0, c1))
+    }
+
     /// A grid of the same shape with `f` applied to every value and the
     /// value of the same cell in `other`.
     ///
@@ -459,6 +498,32 @@ impl<T> IndexMut<Cell> for Grid<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn bounding_box_is_the_accepted_cells_extent() {
+        assert_eq!(Grid::new(0, 0, true).bounding_box(|&v| v), None);
+        assert_eq!(Grid::new(150, 3, false).bounding_box(|&v| v), None);
+        // Rows wider than 64 cells, the accepted cells anywhere in them.
+        for seed in 0..20u64 {
+            let mut s = seed;
+            let g = Grid::from_fn(70 + seed as usize * 13, 9, |_| {
+                s = s
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                (s >> 33) % 97 == 0
+            });
+            let cells: Vec<Cell> = g.true_cells().collect();
+            let brute = (!cells.is_empty()).then(|| {
+                (
+                    cells.iter().map(|c| c.row).min().unwrap_or(0),
+                    cells.iter().map(|c| c.row + 1).max().unwrap_or(0),
+                    cells.iter().map(|c| c.col).min().unwrap_or(0),
+                    cells.iter().map(|c| c.col + 1).max().unwrap_or(0),
+                )
+            });
+            assert_eq!(g.bounding_box(|&v| v), brute, "seed {seed}");
+        }
+    }
 
     #[test]
     fn par_from_fn_is_from_fn() {

@@ -283,22 +283,15 @@ pub fn unit_claims(problem: &CoverageProblem, units: &RoomUnits) -> Grid<u32> {
     // The units' cells' bounding box widened by `k`: no cell beyond it has
     // a unit's cell within reach (a coverage target's units may hold a
     // small part of the map).
-    let (mut r0, mut r1, mut c0, mut c1) = (usize::MAX, 0, usize::MAX, 0);
-    for (r, row) in labels.as_slice().chunks(labels.width().max(1)).enumerate() {
-        if let (Some(a), Some(b)) = (
-            row.iter().position(|&l| l != 0),
-            row.iter().rposition(|&l| l != 0),
-        ) {
-            (r0, r1, c0, c1) = (r0.min(r), r1.max(r), c0.min(a), c1.max(b));
-        }
-    }
+    let window = labels.bounding_box(|&l| l != 0);
     let k_cells = k.max(0) as usize;
     let near_units = |c: Cell| {
-        r0 != usize::MAX
-            && c.row + k_cells >= r0
-            && c.row <= r1 + k_cells
-            && c.col + k_cells >= c0
-            && c.col <= c1 + k_cells
+        window.is_some_and(|(r0, r1, c0, c1)| {
+            c.row + k_cells >= r0
+                && c.row < r1 + k_cells
+                && c.col + k_cells >= c0
+                && c.col < c1 + k_cells
+        })
     };
     Grid::from_fn(coverable.width(), coverable.height(), |c| {
         if !coverable[c] {

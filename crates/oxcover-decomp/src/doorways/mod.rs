@@ -76,7 +76,9 @@ use rayon::prelude::*;
 use oxcover_grid::edt::boundary_distance_sq4;
 use oxcover_grid::{Cell, Dir4, Grid, components4};
 
-use crate::rooms::{Door, RoomParams, Rooms, doors, grow, label_the_rest, merge_small_regions};
+use crate::rooms::{
+    Door, RoomParams, Rooms, doors, grow, label_runs, label_the_rest, merge_small_regions,
+};
 use crate::voronoi_rooms::axis_cells_in;
 
 use blocks::{block_side, doorways_blocked};
@@ -112,32 +114,9 @@ pub fn doorways(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     // Work on the free cells' bounding box and a cell round it: nothing
     // outside it is free, so nothing there can change a label.
     let (w, h) = (free.width(), free.height());
-    // (Rows in parallel.)
-    let (r0, r1, c0, c1) = free
-        .as_slice()
-        .par_chunks(w.max(1))
-        .enumerate()
-        .filter_map(|(r, row)| {
-            // (64 cells at a time, or'ed side by side, to the first and
-            // last that hold a free one.)
-            let any = |run: &[bool]| run.iter().fold(false, |x, &f| x | f);
-            let lo = row.chunks(64).position(any)? * 64;
-            let hi = (row.len() - 1) / 64 * 64;
-            let hi = (0..=hi)
-                .rev()
-                .step_by(64)
-                .find(|&i| any(&row[i..(i + 64).min(row.len())]))?;
-            let a = lo + row[lo..].iter().position(|&f| f)?;
-            let b = hi + row[hi..(hi + 64).min(row.len())].iter().rposition(|&f| f)?;
-            Some((r, r + 1, a, b + 1))
-        })
-        .reduce(
-            || (h, 0, w, 0),
-            |x, y| (x.0.min(y.0), x.1.max(y.1), x.2.min(y.2), x.3.max(y.3)),
-        );
-    if r0 >= r1 {
+    let Some((r0, r1, c0, c1)) = free.bounding_box(|&f| f) else {
         return relabel(Grid::new(w, h, 0), 1.0);
-    }
+    };
     let (r0, c0) = (r0.saturating_sub(1), c0.saturating_sub(1));
     let (r1, c1) = ((r1 + 1).min(h), (c1 + 1).min(w));
     // A fine map: on blocks of cells, the window read in place.
@@ -342,8 +321,9 @@ fn edge_cells(free: &Grid<bool>) -> Vec<Vec<u32>> {
 /// box at least (a block, not a scanned wall's broken piece).
 ///
 /// Every island has a cell beside a free one, so only those (`edges`, as
-/// [`edge_cells`] lists them) start a search, and a search gives up (the island is no furniture) at `most`
-/// cells, at the grid's edge or at a cell an earlier search gave up on:
+/// [`edge_cells`] lists them) start a search, and a search gives up (the
+/// island is no furniture) at `most` cells, at the grid's edge or at a
+/// cell an earlier search gave up on:
 /// the large obstacles (the walls, the world outside) are never filled
 /// whole.
 fn furniture(blocked: &Grid<bool>, edges: &[Vec<u32>], most: f64, thick: usize) -> Grid<bool> {
@@ -426,14 +406,7 @@ fn sizes(labels: &Grid<u32>) -> (Vec<usize>, Vec<u32>) {
     let mut size: Vec<usize> = Vec::new();
     let mut first: Vec<u32> = Vec::new();
     // (A run of equal labels at a time, as `label_counts`.)
-    let s = labels.as_slice();
-    let mut i = 0;
-    while let Some(&l) = s.get(i) {
-        let run = s[i..].iter().take_while(|&&m| m == l).count();
-        i += run;
-        if l == 0 {
-            continue;
-        }
+    for (l, run) in label_runs(labels.as_slice()).filter(|&(l, _)| l != 0) {
         let l = l as usize;
         if l >= size.len() {
             size.resize(l + 1, 0);
