@@ -14,6 +14,8 @@ use oxcover_grid::{Cell, Dir4, Grid};
 
 const BLOCKED: u32 = u32::MAX;
 const UNSEEN: u32 = u32::MAX - 1;
+/// How many cells a flood labels between asking whether it may stop.
+const CHECK_EVERY: usize = 64;
 /// Interior-cell share above which the branchy flood is used. Measured on real
 /// maps (docs/benchmarks.md): open floors have 0.94 to 0.99 and run twice as
 /// fast branchy; mazes (0.005) three times faster branch-free; a 20 % random
@@ -179,10 +181,9 @@ impl Wavefront {
     /// sequential sweep when it touched much of the map (faster than scattered writes).
     pub fn reset(&mut self) {
         if self.tail > self.labels.len() / 16 {
+            // A select, not a branch: the sweep vectorises.
             for l in &mut self.labels {
-                if *l != BLOCKED {
-                    *l = UNSEEN;
-                }
+                *l = if *l == BLOCKED { BLOCKED } else { UNSEEN };
             }
         } else {
             for &i in &self.queue[..self.tail] {
@@ -204,12 +205,20 @@ impl Wavefront {
     /// Like [`Wavefront::propagate`] but stops after distance `max_distance`.
     pub fn propagate_within(&mut self, sources: &[Cell], max_distance: u32) -> usize {
         self.seed(sources);
-        if self.moves.is_some() {
-            self.flood_masked(max_distance);
-        } else {
-            self.flood(max_distance);
-        }
+        self.flood_until(max_distance, |_| false);
         self.tail
+    }
+
+    /// Floods from the seeded queue up to `max_distance`, asking `done`
+    /// (with the labels so far) every [`CHECK_EVERY`] cells whether to stop.
+    fn flood_until(&mut self, max_distance: u32, done: impl FnMut(&[u32]) -> bool) {
+        if self.moves.is_some() {
+            self.flood_masked(max_distance, done);
+        } else if self.branch_free {
+            self.flood(max_distance, done);
+        } else {
+            self.flood_branchy(max_distance, done);
+        }
     }
 
     /// Resets, then labels the passable in-grid `sources` 0 and queues them.
@@ -238,11 +247,7 @@ impl Wavefront {
     /// new cells. On open floors the branches predict well and the plain loop,
     /// without that serial dependency, is faster. The choice is made once per
     /// map from its share of interior cells.
-    fn flood(&mut self, max_distance: u32) {
-        if !self.branch_free {
-            self.flood_branchy(max_distance);
-            return;
-        }
+    fn flood(&mut self, max_distance: u32, mut done: impl FnMut(&[u32]) -> bool) {
         let [n, e, s, w] = self.offsets;
         let labels: &mut [u32] = &mut self.labels;
         let spare = labels.len() - 1;
@@ -250,6 +255,9 @@ impl Wavefront {
         let mut tail = self.tail;
         let mut head = 0;
         while head < tail {
+            if head % CHECK_EVERY == 0 && done(labels) {
+                break;
+            }
             let i = queue[head] as usize;
             head += 1;
             let d = labels[i] + 1;
@@ -268,13 +276,16 @@ impl Wavefront {
         self.tail = tail;
     }
 
-    fn flood_branchy(&mut self, max_distance: u32) {
+    fn flood_branchy(&mut self, max_distance: u32, mut done: impl FnMut(&[u32]) -> bool) {
         let [n, e, s, w] = self.offsets;
         let labels: &mut [u32] = &mut self.labels;
         let queue: &mut [u32] = &mut self.queue;
         let mut tail = self.tail;
         let mut head = 0;
         while head < tail {
+            if head % CHECK_EVERY == 0 && done(labels) {
+                break;
+            }
             let i = queue[head] as usize;
             head += 1;
             let d = labels[i] + 1;
@@ -293,7 +304,7 @@ impl Wavefront {
         self.tail = tail;
     }
 
-    fn flood_masked(&mut self, max_distance: u32) {
+    fn flood_masked(&mut self, max_distance: u32, mut done: impl FnMut(&[u32]) -> bool) {
         let offsets = self.offsets;
         let Some(moves) = self.moves.as_deref() else {
             return;
@@ -304,6 +315,9 @@ impl Wavefront {
         let mut tail = self.tail;
         let mut head = 0;
         while head < tail {
+            if head % CHECK_EVERY == 0 && done(labels) {
+                break;
+            }
             let i = queue[head] as usize;
             head += 1;
             let d = labels[i] + 1;
@@ -322,33 +336,29 @@ impl Wavefront {
         self.tail = tail;
     }
 
-    /// Like [`Wavefront::propagate`] but stops after the first layer by which
-    /// every passable in-grid cell of `targets` is labelled (their distances,
-    /// and those of every cell labelled so far, are final; targets no source
-    /// reaches stay unlabelled). Returns the number of cells labelled.
+    /// Like [`Wavefront::propagate`] but stops soon after every passable
+    /// in-grid cell of `targets` is labelled (within [`CHECK_EVERY`] more
+    /// cells; their distances, and those of every cell labelled so far,
+    /// are final; targets no source reaches stay unlabelled). Returns the
+    /// number of cells labelled.
     pub fn propagate_until_reached(&mut self, sources: &[Cell], targets: &[Cell]) -> usize {
-        let mut wanted = vec![false; self.labels.len()];
-        let mut left = 0usize;
-        for &t in targets {
-            if self.inside(t) {
-                let i = self.pad(t);
-                if self.labels[i] != BLOCKED && !wanted[i] {
-                    wanted[i] = true;
-                    left += 1;
-                }
+        // The passable targets, each once. Labels are never taken back, so
+        // a cursor over them moves past each once.
+        let mut wanted: Vec<u32> = targets
+            .iter()
+            .filter(|&&t| self.inside(t))
+            .map(|&t| self.pad(t) as u32)
+            .filter(|&i| self.labels[i as usize] != BLOCKED)
+            .collect();
+        wanted.sort_unstable();
+        wanted.dedup();
+        self.seed(if wanted.is_empty() { &[] } else { sources });
+        let mut next = 0;
+        self.flood_until(u32::MAX, |labels| {
+            while next < wanted.len() && labels[wanted[next] as usize] < UNSEEN {
+                next += 1;
             }
-        }
-        if left == 0 {
-            self.seed(&[]);
-            return 0;
-        }
-        self.run(sources, u32::MAX, |layer, _| {
-            for &i in layer.cells {
-                if std::mem::take(&mut wanted[i as usize]) {
-                    left -= 1;
-                }
-            }
-            left == 0
+            next == wanted.len()
         });
         self.tail
     }
