@@ -218,9 +218,31 @@ pub fn coverable_cells(free: &Grid<bool>, centres: &Grid<bool>, tool_cells: f64)
     if reach.is_nan() {
         return Grid::new(free.width(), free.height(), false);
     }
+    // Only the centres' bounding box widened by the reach can hold a cell
+    // within reach: the transform runs there (a zone costs the zone).
+    let Some((r0, r1, c0, c1)) = centres.bounding_box(|&b| b) else {
+        return Grid::new(free.width(), free.height(), false);
+    };
+    let k = reach.ceil() as usize;
+    let window = (
+        r0.saturating_sub(k),
+        r1.saturating_add(k).min(free.height()),
+        c0.saturating_sub(k),
+        c1.saturating_add(k).min(free.width()),
+    );
     // An integer d² is at most reach² when at most its floor.
-    let near = center_within_sq(centres, (reach * reach).floor() as u64);
-    free.zip_map(&near, |&f, &n| f && n)
+    let limit = (reach * reach).floor() as u64;
+    if window == (0, free.height(), 0, free.width()) {
+        let near = center_within_sq(centres, limit);
+        return free.zip_map(&near, |&f, &n| f && n);
+    }
+    let near = center_within_sq(&centres.crop(window), limit);
+    let mut out = Grid::new(free.width(), free.height(), false);
+    out.paste(
+        Cell::new(window.0, window.2),
+        &free.crop(window).zip_map(&near, |&f, &n| f && n),
+    );
+    out
 }
 
 #[cfg(test)]
@@ -283,6 +305,22 @@ mod tests {
                 }
                 None => proptest::prop_assert!(Coverability::in_largest_region(&m, robot).is_err()),
             }
+        }
+
+        /// The free cells within reach of a few centres, whatever part of
+        /// the grid they hold, are those a check of every pair finds.
+        #[test]
+        fn coverable_cells_are_those_within_reach(seed in 0u64..1000, tool in 0.0f64..4.0, picks in proptest::collection::vec((0usize..17, 0usize..23), 0..4)) {
+            let free = crate::random::random_density(23, 17, 0.3, seed).free_mask();
+            let centres = Grid::from_fn(23, 17, |c: Cell| picks.contains(&(c.row, c.col)));
+            let reach = tool + TOLERANCE_CELLS;
+            let brute = Grid::from_fn(23, 17, |c: Cell| {
+                free[c] && picks.iter().any(|&(r, q)| {
+                    let (dr, dc) = (r as f64 - c.row as f64, q as f64 - c.col as f64);
+                    dr * dr + dc * dc <= reach * reach
+                })
+            });
+            proptest::prop_assert_eq!(coverable_cells(&free, &centres, tool), brute);
         }
     }
 

@@ -425,6 +425,52 @@ impl<T> Grid<T> {
         (r0 < r1).then_some((r0, r1, c0, c1))
     }
 
+    /// The window `(r0, r1, c0, c1)` (rows `r0..r1`, columns `c0..c1`, as
+    /// [`Grid::bounding_box`] gives it) as a grid of its own.
+    ///
+    /// # Panics
+    /// If the window reaches past the grid.
+    #[must_use]
+    pub fn crop(&self, (r0, r1, c0, c1): (usize, usize, usize, usize)) -> Self
+    where
+        T: Clone,
+    {
+        assert!(
+            r0 <= r1 && r1 <= self.height && c0 <= c1 && c1 <= self.width,
+            "crop window outside the grid"
+        );
+        let data = (r0..r1)
+            .flat_map(|r| self.row(r)[c0..c1].iter().cloned())
+            .collect();
+        Self {
+            width: c1 - c0,
+            height: r1 - r0,
+            data,
+        }
+    }
+
+    /// Writes `part` into this grid with its first cell at `at` (the
+    /// inverse of [`Grid::crop`]).
+    ///
+    /// # Panics
+    /// If `part` placed at `at` reaches past the grid.
+    pub fn paste(&mut self, at: Cell, part: &Self)
+    where
+        T: Clone,
+    {
+        assert!(
+            at.row + part.height <= self.height && at.col + part.width <= self.width,
+            "pasted part outside the grid"
+        );
+        if part.width == 0 {
+            return;
+        }
+        for (r, row) in part.data.chunks(part.width).enumerate() {
+            let i = (at.row + r) * self.width + at.col;
+            self.data[i..i + part.width].clone_from_slice(row);
+        }
+    }
+
     /// A grid of the same shape with `f` applied to every value and the
     /// value of the same cell in `other`.
     ///
@@ -523,6 +569,23 @@ mod tests {
             });
             assert_eq!(g.bounding_box(|&v| v), brute, "seed {seed}");
         }
+    }
+
+    #[test]
+    fn crop_reads_the_window_and_paste_puts_it_back() {
+        let g = Grid::from_fn(7, 5, |c| c.row * 10 + c.col);
+        let part = g.crop((1, 4, 2, 6));
+        assert_eq!((part.width(), part.height()), (4, 3));
+        assert_eq!(part.row(0), &[12, 13, 14, 15]);
+        assert_eq!(part[Cell::new(2, 3)], 35);
+        assert_eq!(g.crop((2, 2, 0, 7)).len(), 0);
+        let mut blank = Grid::new(7, 5, 0);
+        blank.paste(Cell::new(1, 2), &part);
+        for c in g.cells() {
+            let inside = (1..4).contains(&c.row) && (2..6).contains(&c.col);
+            assert_eq!(blank[c], if inside { g[c] } else { 0 }, "{c:?}");
+        }
+        blank.paste(Cell::new(5, 7), &Grid::new(0, 0, 1));
     }
 
     #[test]

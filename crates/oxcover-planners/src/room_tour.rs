@@ -50,11 +50,28 @@ impl RoomUnits {
             (w, h),
             "room labels must cover the plannable grid cell for cell"
         );
-        // Connected plannable parts of one room each.
-        let Components { labels, sizes } = components4_by_class(plannable, rooms);
-        let mut units = Self { labels, sizes };
-        units.merge_small(min_cells);
-        units
+        // Found on the plannable cells' bounding box only (a coverage
+        // target's units may hold a small part of the map): the same units
+        // in the same order.
+        let window = plannable.bounding_box(|&b| b);
+        match window {
+            Some(window) if window != (0, h, 0, w) => {
+                let part = Self::new(&plannable.crop(window), &rooms.crop(window), min_cells);
+                let mut labels = Grid::new(w, h, 0);
+                labels.paste(Cell::new(window.0, window.2), &part.labels);
+                Self {
+                    labels,
+                    sizes: part.sizes,
+                }
+            }
+            _ => {
+                // Connected plannable parts of one room each.
+                let Components { labels, sizes } = components4_by_class(plannable, rooms);
+                let mut units = Self { labels, sizes };
+                units.merge_small(min_cells);
+                units
+            }
+        }
     }
 
     /// Number of units.
@@ -280,28 +297,28 @@ pub fn unit_claims(problem: &CoverageProblem, units: &RoomUnits) -> Grid<u32> {
     let tool = problem.tool_cells() + oxcover_grid::TOLERANCE_CELLS;
     let k = tool.ceil() as isize;
     let labels = &units.labels;
-    // The units' cells' bounding box widened by `k`: no cell beyond it has
-    // a unit's cell within reach (a coverage target's units may hold a
-    // small part of the map).
-    let window = labels.bounding_box(|&l| l != 0);
     let k_cells = k.max(0) as usize;
-    let near_units = |c: Cell| {
-        window.is_some_and(|(r0, r1, c0, c1)| {
-            c.row + k_cells >= r0
-                && c.row < r1 + k_cells
-                && c.col + k_cells >= c0
-                && c.col < c1 + k_cells
-        })
+    // Beyond the units' cells' bounding box widened by `k` no cell has a
+    // unit's cell within reach (a coverage target's units may hold a small
+    // part of the map): every unit may cover those.
+    let mut claims = coverable.map(|&c| if c { ANY_UNIT } else { 0 });
+    let Some((r0, r1, c0, c1)) = labels.bounding_box(|&l| l != 0) else {
+        return claims;
     };
-    Grid::from_fn(coverable.width(), coverable.height(), |c| {
+    let (w, h) = (coverable.width(), coverable.height());
+    let window = (
+        r0.saturating_sub(k_cells),
+        (r1 + k_cells).min(h),
+        c0.saturating_sub(k_cells),
+        (c1 + k_cells).min(w),
+    );
+    let near = Grid::from_fn(window.3 - window.2, window.1 - window.0, |at: Cell| {
+        let c = Cell::new(at.row + window.0, at.col + window.2);
         if !coverable[c] {
             return 0;
         }
         if labels[c] != 0 {
             return labels[c];
-        }
-        if !near_units(c) {
-            return ANY_UNIT;
         }
         let mut best = (f64::INFINITY, 0u32);
         for dr in -k..=k {
@@ -324,7 +341,9 @@ pub fn unit_claims(problem: &CoverageProblem, units: &RoomUnits) -> Grid<u32> {
         }
         // None found (cannot happen for a coverable cell): every unit.
         if best.1 == 0 { ANY_UNIT } else { best.1 }
-    })
+    });
+    claims.paste(Cell::new(window.0, window.2), &near);
+    claims
 }
 
 /// The claim of a cell every unit covers.
@@ -349,13 +368,15 @@ pub fn unit_exits(
         }
     }
     // Each step of the order on its own (in parallel, each search with its
-    // own wavefront; in the order's order whatever the thread count).
+    // own copy of one wavefront; in the order's order whatever the thread
+    // count).
+    let wave = Wavefront::new(plannable);
     let mut exits: Vec<Option<Cell>> = order
         .par_windows(2)
         .map_init(
-            || Wavefront::new(plannable),
-            |wave, w| {
-                let (here, next) = (w[0], w[1]);
+            || wave.clone(),
+            |wave, step| {
+                let (here, next) = (step[0], step[1]);
                 let sources = cells_of.get(next as usize).map_or(&[][..], Vec::as_slice);
                 let found = cidt(wave, sources, |c| units.labels[c] == here);
                 found.map(|f| f.first())
@@ -458,5 +479,58 @@ mod tests {
             u.restricted(&p, 1, bounds[0], Cell::new(2, 5), &claims)
                 .is_err()
         );
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(24))]
+        /// The units of a part of a map (a coverage target's), their claims
+        /// and exits, found on their windows, are those found on the whole
+        /// map: units numbered alike, claims by the nearest unit cell
+        /// within reach, exits by a search over every plannable cell.
+        #[test]
+        fn a_part_is_planned_as_on_the_whole_map(seed in 0u64..1000, r0 in 0usize..70, c0 in 0usize..90, band in 4usize..20) {
+            let map = oxcover_grid::random::blobs(150, 110, 12, 9, seed);
+            let Ok(p) = CoverageProblem::new(&map, DiscRobot::new(0.0, 1.5).unwrap(), Start::LargestRegion) else {
+                return Ok(());
+            };
+            let part = Grid::from_fn(150, 110, |c: Cell| {
+                p.plannable()[c] && (r0..r0 + 40).contains(&c.row) && (c0..c0 + 60).contains(&c.col)
+            });
+            let rooms = Grid::from_fn(150, 110, |c: Cell| 1 + (c.col / band) as u32);
+            let u = RoomUnits::new(&part, &rooms, 6);
+            // Units: the whole map's components, merged and numbered alike.
+            let Components { labels, sizes } = components4_by_class(&part, &rooms);
+            let mut whole = RoomUnits { labels, sizes };
+            whole.merge_small(6);
+            proptest::prop_assert_eq!(&u, &whole);
+            // Claims: a unit cell's own unit, else the nearest unit cell's.
+            let claims = unit_claims(&p, &u);
+            let reach = p.tool_cells() + oxcover_grid::TOLERANCE_CELLS;
+            let unit_cells: Vec<Cell> = u.labels.cells().filter(|&c| u.labels[c] != 0).collect();
+            for c in p.cells().coverable.true_cells() {
+                let nearest = unit_cells
+                    .iter()
+                    .map(|&q| {
+                        let (dr, dc) = (q.row as f64 - c.row as f64, q.col as f64 - c.col as f64);
+                        (dr * dr + dc * dc, u.labels[q])
+                    })
+                    .filter(|&(d2, _)| d2 <= reach * reach)
+                    .min_by(|a, b| a.partial_cmp(b).unwrap());
+                let want = if u.labels[c] != 0 { u.labels[c] } else { nearest.map_or(ANY_UNIT, |n| n.1) };
+                proptest::prop_assert_eq!(claims[c], want, "{:?}", c);
+            }
+            // Exits: one search over every plannable cell per step.
+            let order: Vec<u32> = (1..=u.count() as u32).collect();
+            let mut wave = Wavefront::new(p.plannable());
+            let mut want: Vec<Option<Cell>> = order
+                .windows(2)
+                .map(|s| {
+                    let next: Vec<Cell> = unit_cells.iter().copied().filter(|&c| u.labels[c] == s[1]).collect();
+                    cidt(&mut wave, &next, |c| u.labels[c] == s[0]).map(|f| f.first())
+                })
+                .collect();
+            want.push(None);
+            proptest::prop_assert_eq!(unit_exits(&p, &u, &order), want);
+        }
     }
 }
