@@ -88,10 +88,20 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
         1.0
     };
     let at = |c: Cell, d: (isize, isize)| free.offset(c, d).filter(|&n| free[n]);
-    let axis = medial_axis(free, &d4);
+    // The axis where it is narrow enough for a door: a candidate and every
+    // axis neighbour narrower than it lie there.
+    let narrow_axis = axis_cells_in(
+        free,
+        &d4,
+        0..=((4.0 * door_half * door_half) as u64).saturating_add(1),
+    );
+    let mut axis = Grid::new(w, h, false);
+    for &c in &narrow_axis {
+        axis[c] = true;
+    }
     // Candidates: narrowest axis cells within their neighbourhood.
     let mut candidates: Vec<(u64, Cell)> = Vec::new();
-    for c in axis.true_cells() {
+    for &c in &narrow_axis {
         let r = clearance(c);
         if r > door_half || r < 0.5 {
             continue;
@@ -109,10 +119,13 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     // along it), the one where the passage opens into the narrower of the
     // two spaces comes first, so that the passage belongs to the space it
     // leads into (an office's doorway to the office, not to the corridor).
+    // Offsets as far as the widest candidate's search reaches.
+    let widest = candidates.iter().map(|&(d, _)| d).max().unwrap_or(0);
+    let nearest_first = nearest_first(((widest as f64).sqrt() / 2.0 + 2.0).ceil() as isize);
     let mut candidates: Vec<(u64, u32, Cell)> = candidates
-        .into_iter()
+        .into_par_iter()
         .filter_map(|(d, c)| {
-            let [a, b] = openings(free, &d4, c, door_half)?;
+            let [a, b] = openings(free, &d4, c, door_half, &nearest_first)?;
             let near = if a.space <= b.space { a.at } else { b.at };
             Some((d, (2.0 * near) as u32, c))
         })
@@ -162,7 +175,8 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     let mut queue: VecDeque<Cell> = {
         let (ids, free) = (labels.as_slice(), free.as_slice());
         let unlabelled = |n: usize| free[n] && ids[n] == 0;
-        (0..ids.len())
+        let seeds: Vec<Cell> = (0..ids.len())
+            .into_par_iter()
             .filter(|&i| {
                 let col = i % w;
                 ids[i] != 0
@@ -172,7 +186,8 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
                         || (i + w < ids.len() && unlabelled(i + w)))
             })
             .map(|i| Cell::new(i / w, i % w))
-            .collect()
+            .collect();
+        seeds.into()
     };
     grow(free, &mut labels, &mut queue);
     // Regions made of cut cells only.
@@ -223,38 +238,14 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     }
 }
 
-/// The medial axis of the free cells of `free` (a grid stand-in for the
-/// generalised Voronoi diagram): the free cells whose clearance (`d4`,
-/// 4·clearance², [`boundary_distance_sq4`]) is a crest along at least one
-/// of the four line directions through them (not lower than either
-/// neighbour on the line, higher than one).
-pub(crate) fn medial_axis(free: &Grid<bool>, d4: &Grid<u64>) -> Grid<bool> {
-    let (w, h) = (free.width(), free.height());
-    // The clearance of the free cells, 0 on the others and on a frame one
-    // cell wide round the map: read by index, as this looks at every cell.
-    let pw = w + 2;
-    let mut framed = vec![0u64; pw * (h + 2)];
-    for c in free.true_cells() {
-        framed[(c.row + 1) * pw + c.col + 1] = d4[c];
-    }
-    let steps = LINES.map(|(dr, dc)| dr * pw as isize + dc);
-    Grid::par_from_fn(w, h, |c| {
-        let i = (c.row + 1) * pw + c.col + 1;
-        let v = framed[i];
-        free[c]
-            && steps.iter().any(|&s| {
-                let a = framed[i.wrapping_add_signed(s)];
-                let b = framed[i.wrapping_add_signed(-s)];
-                // Not lower than either side and higher than one: a
-                // crest across the line (a slope along a wall is no crest).
-                v >= a && v >= b && (v > a || v > b)
-            })
-    })
-}
-
-/// The cells of the medial axis ([`medial_axis`]) whose `4·clearance²`
-/// lies in `range`, row-major: looks at the crest only where the clearance
-/// is in range (the narrow parts of the axis, without the whole grid's).
+/// The cells of the medial axis of the free cells of `free` (a grid
+/// stand-in for the generalised Voronoi diagram: the free cells whose
+/// clearance `d4`, 4·clearance² as [`boundary_distance_sq4`] gives it, is a
+/// crest along at least one of the four line directions through them, not
+/// lower than either neighbour on the line and higher than one) whose
+/// `4·clearance²` lies in `range`, row-major: looks at the crest only where
+/// the clearance is in range (the narrow parts of the axis, without the
+/// whole grid's).
 pub(crate) fn axis_cells_in(
     free: &Grid<bool>,
     d4: &Grid<u64>,
@@ -314,24 +305,30 @@ pub(crate) fn axis_cells_in(
 /// free cells reaches a cell of clearance at least [`WIDER`] cells more
 /// than `c`'s. Each side's opening: how far that cell is from `c`, and the
 /// clearance of the space beyond ([`crest`]).
-fn openings(free: &Grid<bool>, d4: &Grid<u64>, c: Cell, door_half: f64) -> Option<[Opening; 2]> {
+fn openings(
+    free: &Grid<bool>,
+    d4: &Grid<u64>,
+    c: Cell,
+    door_half: f64,
+    nearest_first: &[(isize, isize)],
+) -> Option<[Opening; 2]> {
     let r = (d4[c] as f64).sqrt() / 2.0;
     let wide = r + WIDER;
     let wide4 = (4.0 * wide * wide).ceil() as u64;
-    // The nearest non-free cell (or the map edge) round `c`.
+    // The nearest non-free cell (or the map edge) round `c`, within `k`
+    // rows and columns: the first in `nearest_first` order. None lies
+    // nearer than the clearance (a cell's boundary is no farther than its
+    // centre), so the search starts there.
     let k = (r + 2.0).ceil() as isize;
-    let mut best: Option<(f64, (f64, f64))> = None;
-    for dr in -k..=k {
-        for dc in -k..=k {
-            let blocked = free.offset(c, (dr, dc)).is_none_or(|n| !free[n]);
-            if blocked {
-                let d = ((dr * dr + dc * dc) as f64).sqrt();
-                if best.is_none_or(|b| d < b.0) {
-                    best = Some((d, (dr as f64 / d, dc as f64 / d)));
-                }
-            }
-        }
-    }
+    let from = nearest_first.partition_point(|&(dr, dc)| 4 * (dr * dr + dc * dc) < d4[c] as isize);
+    let best = nearest_first[from..]
+        .iter()
+        .filter(|&&(dr, dc)| dr.abs() <= k && dc.abs() <= k)
+        .find(|&&(dr, dc)| free.offset(c, (dr, dc)).is_none_or(|n| !free[n]))
+        .map(|&(dr, dc)| {
+            let d = ((dr * dr + dc * dc) as f64).sqrt();
+            (d, (dr as f64 / d, dc as f64 / d))
+        });
     let (_, (ur, uc)) = best?;
     // Along the axis: perpendicular to the critical line.
     let (pr, pc) = (-uc, ur);
@@ -362,15 +359,38 @@ fn openings(free: &Grid<bool>, d4: &Grid<u64>, c: Cell, door_half: f64) -> Optio
     Some([side(1.0)?, side(-1.0)?])
 }
 
+/// The offsets of the square of `k` cells round a cell, nearest first, of
+/// equally near ones the first a row-major scan of the square meets.
+fn nearest_first(k: isize) -> Vec<(isize, isize)> {
+    let mut offsets: Vec<(isize, isize)> = (-k..=k)
+        .flat_map(|dr| (-k..=k).map(move |dc| (dr, dc)))
+        .collect();
+    offsets.sort_by_key(|&(dr, dc)| (dr * dr + dc * dc, dr, dc));
+    offsets
+}
+
 /// The clearance (4·d²) where a climb from `c` to ever wider neighbours
 /// stops: the widest point of the space `c` opens into, as seen from it
 /// (a climb never leads back through a narrower door).
 fn crest(d4: &Grid<u64>, mut c: Cell) -> u64 {
+    let (w, h) = (d4.width(), d4.height());
+    let d = d4.as_slice();
     loop {
-        let next = RING8
-            .iter()
-            .filter_map(|&d| d4.offset(c, d))
-            .max_by_key(|&n| (d4[n], std::cmp::Reverse(n)));
+        // The widest neighbour, of equally wide ones the first in row-major
+        // order: by index away from the grid's edge.
+        let next = if c.row > 0 && c.col > 0 && c.row + 1 < h && c.col + 1 < w {
+            let i = c.row * w + c.col;
+            RING8
+                .iter()
+                .map(|&(dr, dc)| i.wrapping_add_signed(dr * w as isize + dc))
+                .max_by_key(|&j| (d[j], std::cmp::Reverse(j)))
+                .map(|j| Cell::new(j / w, j % w))
+        } else {
+            RING8
+                .iter()
+                .filter_map(|&o| d4.offset(c, o))
+                .max_by_key(|&n| (d4[n], std::cmp::Reverse(n)))
+        };
         match next {
             Some(n) if d4[n] > d4[c] => c = n,
             _ => return d4[c],
