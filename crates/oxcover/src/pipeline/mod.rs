@@ -31,14 +31,14 @@ use oxcover_grid::{Grid, OccupancyGrid, coverable_cells};
 use oxcover_planners::{CoverageProblem, RoomUnits, Start};
 
 use self::region::plan_whole;
-use self::rooms::{in_several_rooms, min_unit_cells, plan_rooms, room_labels, units_of};
+use self::rooms::{PlanRooms, in_several_rooms, min_unit_cells, plan_rooms, units_of};
 use crate::error::Result;
 use crate::targets::{RoomOrder, TargetCells, TargetSummary};
 
 pub use self::load::{MapReading, load_map, load_map_with};
 pub use self::outputs::{Outputs, coverage_notes, metres, plan_scene, short_name, write_outputs};
 pub use self::request::{PlanOutcome, PlanRequest, PlannerInfo, RoomStretch, planner, planners};
-pub use self::rooms::{MIN_UNIT_M2, room_units};
+pub use self::rooms::{LOCAL_ROOMS_MARGIN_M, MIN_UNIT_M2, room_units};
 
 /// Plans a coverage path on `map`.
 ///
@@ -73,7 +73,7 @@ pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
     // built (same result whatever the thread count).
     let (problem, rooms) = rayon::join(
         || request.problem(&work_map),
-        || request.rooms.then(|| room_labels(&work_map)),
+        || request.rooms.then(|| PlanRooms::new(&work_map, request)),
     );
     let problem = problem?;
     let lost = clearance_lost(&work_map, &problem, request)?;
@@ -107,7 +107,7 @@ fn clearance_lost(
 fn plan_problem(
     map: &OccupancyGrid,
     problem: CoverageProblem,
-    rooms: Option<Rooms>,
+    rooms: Option<PlanRooms<'_>>,
     blocked_cells: usize,
     request: &PlanRequest,
     t0: Instant,
@@ -137,7 +137,8 @@ fn plan_problem(
         outcome.notes = target.notes;
         return Ok(outcome);
     }
-    let mut outcome = plan_map(&problem, rooms.as_ref(), request, t0)?;
+    let whole_rooms = rooms.as_ref().map(PlanRooms::whole);
+    let mut outcome = plan_map(&problem, whole_rooms.as_deref(), request, t0)?;
     if targets.keep_out.is_some() {
         outcome.targets = Some(TargetSummary {
             required_cells: outcome.evaluation.metrics.coverable_cells,
@@ -195,7 +196,8 @@ fn keep_out_spares_start(
 
 /// Plans a coverage target: the plannable cells within the tool's reach of
 /// the required cells ([`target_region`]), cut into units by the plan's
-/// rooms when rooms are on (else by the chosen rooms, else one unit per
+/// rooms when rooms are on (a small target's own neighbourhood's, see
+/// [`LOCAL_ROOMS_MARGIN_M`]; else by the chosen rooms, else one unit per
 /// connected part) and planned unit by unit, the robot free to drive
 /// anywhere between them; a target of more than half the plannable cells
 /// is also planned as the whole map is (its required cells covered on the
@@ -206,14 +208,14 @@ fn plan_target(
     problem: &CoverageProblem,
     whole: &CoverageProblem,
     target: &TargetCells,
-    rooms: Option<&Rooms>,
+    rooms: Option<&PlanRooms<'_>>,
     request: &PlanRequest,
     t0: Instant,
 ) -> Result<PlanOutcome> {
     let region = target_region(problem, &target.required);
     let (w, h) = (region.width(), region.height());
     let labels = match (rooms, &target.room_labels) {
-        (Some(rooms), _) => rooms.labels.clone(),
+        (Some(rooms), _) => rooms.rooms.labels.clone(),
         (None, Some(chosen)) => chosen.clone(),
         (None, None) => Grid::new(w, h, 1),
     };
@@ -232,8 +234,9 @@ fn plan_target(
     if keep_order || 2 * region.count_true() <= problem.plannable().count_true() {
         return Ok(by_units);
     }
-    let by_map = plan_map(problem, rooms, request, t0)?;
-    let map_plan = plan_map(whole, rooms, request, t0)?;
+    let rooms = rooms.map(PlanRooms::whole);
+    let by_map = plan_map(problem, rooms.as_deref(), request, t0)?;
+    let map_plan = plan_map(whole, rooms.as_deref(), request, t0)?;
     let part = remainder::covering_part(problem, request, &map_plan, false, t0)?;
     let time = |o: &PlanOutcome| o.evaluation.metrics.est_time_s;
     let mut kept = [Some(by_map), part]

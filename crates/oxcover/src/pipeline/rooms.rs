@@ -45,6 +45,92 @@ pub(super) fn room_labels(map: &OccupancyGrid) -> Rooms {
     voronoi(&map.free_mask(), &RoomParams::indoor(map.resolution()))
 }
 
+/// How far round a target bounded by zones or a spot its rooms are
+/// segmented (m): a room's doors and walls within this of the target
+/// shape its units as on the whole map.
+pub const LOCAL_ROOMS_MARGIN_M: f64 = 4.0;
+
+/// The rooms a plan is cut into: the whole map's ([`room_labels`]), or,
+/// for a target the zones or a spot bound to a window of at most half the
+/// map ([`crate::targets::Targets::extent`]), those of the window
+/// widened by [`LOCAL_ROOMS_MARGIN_M`] and the tool radius, segmented there
+/// alone (0 beyond it): a small zone costs its neighbourhood, not the map.
+pub(super) struct PlanRooms<'m> {
+    pub(super) rooms: Rooms,
+    /// Where `rooms` are a window's: the map and the window.
+    local: Option<(&'m OccupancyGrid, Window)>,
+}
+
+/// Rows `r0..r1` and columns `c0..c1` of a grid.
+type Window = (usize, usize, usize, usize);
+
+impl<'m> PlanRooms<'m> {
+    /// The rooms of `map` (keep-out applied) for `request`.
+    pub(super) fn new(map: &'m OccupancyGrid, request: &PlanRequest) -> Self {
+        let res = map.resolution();
+        let margin = ((LOCAL_ROOMS_MARGIN_M + request.robot.tool_radius) / res).ceil();
+        let (w, h) = (map.width(), map.height());
+        let window = request.targets.extent(map).and_then(|(r0, r1, c0, c1)| {
+            // Saturating: a huge margin takes the whole map.
+            let k = if margin.is_finite() {
+                margin as usize
+            } else {
+                usize::MAX
+            };
+            let win = (
+                r0.saturating_sub(k),
+                r1.saturating_add(k).min(h),
+                c0.saturating_sub(k),
+                c1.saturating_add(k).min(w),
+            );
+            (2 * (win.1 - win.0) * (win.3 - win.2) <= w * h).then_some(win)
+        });
+        match window {
+            Some(win) => {
+                let part = voronoi(&map.free_mask().crop(win), &RoomParams::indoor(res));
+                let mut labels = Grid::new(w, h, 0);
+                labels.paste(Cell::new(win.0, win.2), &part.labels);
+                let shift = |c: Cell| Cell::new(c.row + win.0, c.col + win.2);
+                let doors = part
+                    .doors
+                    .into_iter()
+                    .map(|d| oxcover_decomp::Door {
+                        rooms: d.rooms,
+                        cells: d.cells.into_iter().map(shift).collect(),
+                        centre: shift(d.centre),
+                    })
+                    .collect();
+                Self {
+                    rooms: Rooms {
+                        labels,
+                        doors,
+                        ..part
+                    },
+                    local: Some((map, win)),
+                }
+            }
+            None => Self {
+                rooms: room_labels(map),
+                local: None,
+            },
+        }
+    }
+
+    /// The window the rooms were segmented on, if not the whole map.
+    #[cfg(test)]
+    pub(super) fn local(&self) -> Option<Window> {
+        self.local.map(|(_, win)| win)
+    }
+
+    /// The whole map's rooms (segmented now where these are a window's).
+    pub(super) fn whole(&self) -> std::borrow::Cow<'_, Rooms> {
+        match self.local {
+            Some((map, _)) => std::borrow::Cow::Owned(room_labels(map)),
+            None => std::borrow::Cow::Borrowed(&self.rooms),
+        }
+    }
+}
+
 /// Whether the `plannable` cells carry more than one room label.
 pub(super) fn in_several_rooms(plannable: &Grid<bool>, labels: &Grid<u32>) -> bool {
     let mut seen = None;

@@ -165,3 +165,57 @@ fn wide_tool_plan_is_complete_and_collision_free() {
         out.coverage_without_boundary_pass
     );
 }
+
+/// A small zone's rooms are segmented on its window only (no label beyond
+/// it), a large zone's and a plain plan's on the whole map; the whole
+/// map's rooms are at hand either way.
+#[test]
+fn a_small_zone_segments_its_neighbourhood() {
+    use crate::targets::{Areas, Targets};
+    let map = oxcover_grid::OccupancyGrid::new(
+        rectangles(400, 300, 40, 30, 5).cells().clone(),
+        0.05,
+        Point::origin(),
+    );
+    let zone = |x0: f64, x1: f64| {
+        geo::Polygon::new(
+            geo::LineString::from(vec![(x0, 5.0), (x1, 5.0), (x1, 8.0), (x0, 8.0), (x0, 5.0)]),
+            Vec::new(),
+        )
+    };
+    let request = |targets: Targets| {
+        PlanRequest::new("lanes", 0.05)
+            .unwrap()
+            .robot(DiscRobot::new(0.1, 0.1).unwrap())
+            .targets(targets)
+    };
+    let zoned = |x1: f64| Targets {
+        zones: Some(Areas {
+            polygons: vec![zone(8.0, x1)],
+            lines: Vec::new(),
+        }),
+        ..Targets::default()
+    };
+    let whole = rooms::PlanRooms::new(&map, &request(Targets::default()));
+    assert!(whole.local().is_none());
+    let small = rooms::PlanRooms::new(&map, &request(zoned(11.0)));
+    let (r0, r1, c0, c1) = small.local().expect("a window");
+    // The zone's box (columns 160 to 220, a cell more round) widened by
+    // the margin and the tool (82 cells, give or take rounding).
+    assert!((159 - 83..=159 - 82).contains(&c0), "{c0}");
+    assert!((221 + 82..=221 + 83).contains(&c1), "{c1}");
+    assert!(r0 > 0 && r1 < 300);
+    for c in small.rooms.labels.cells() {
+        if !((r0..r1).contains(&c.row) && (c0..c1).contains(&c.col)) {
+            assert_eq!(small.rooms.labels[c], 0, "{c:?}");
+        }
+    }
+    assert!(small.rooms.labels.as_slice().iter().any(|&l| l > 0));
+    assert_eq!(*small.whole(), *whole.whole());
+    // A zone most of the map wide: the whole map's rooms.
+    assert!(
+        rooms::PlanRooms::new(&map, &request(zoned(19.5)))
+            .local()
+            .is_none()
+    );
+}

@@ -118,6 +118,68 @@ impl Targets {
             || self.done.is_some()
     }
 
+    /// The window of `map` (rows `r0..r1`, columns `c0..c1`) that holds
+    /// every cell centre the zones and the spot take in (the intersection
+    /// of their bounding boxes), `None` where neither is given: the
+    /// required cells lie there, whatever else narrows them.
+    #[must_use]
+    pub fn extent(&self, map: &OccupancyGrid) -> Option<(usize, usize, usize, usize)> {
+        use geo::BoundingRect;
+        let frame = map.frame();
+        let (w, h) = (map.width() as f64, map.height() as f64);
+        // A box in metres as the window of cells round it (the frame may
+        // be turned: its four corners' rows and columns).
+        let window = |lo: Point, hi: Point| {
+            let corners = [(lo.x, lo.y), (hi.x, lo.y), (lo.x, hi.y), (hi.x, hi.y)]
+                .map(|(x, y)| frame.fractional_cell(&Point::new(x, y)));
+            let (mut r0, mut r1, mut c0, mut c1) = (
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+            );
+            for (r, c) in corners {
+                (r0, r1, c0, c1) = (r0.min(r), r1.max(r), c0.min(c), c1.max(c));
+            }
+            // Every cell whose centre may lie inside, and one more round.
+            let clamp = |v: f64, top: f64| v.clamp(0.0, top) as usize;
+            (
+                clamp(r0.floor() - 1.0, h),
+                clamp(r1.ceil() + 1.0, h),
+                clamp(c0.floor() - 1.0, w),
+                clamp(c1.ceil() + 1.0, w),
+            )
+        };
+        let mut boxes = Vec::new();
+        if let Some(zones) = &self.zones {
+            let rect = zones
+                .polygons
+                .iter()
+                .filter_map(BoundingRect::bounding_rect)
+                .reduce(|a, b| {
+                    geo::Rect::new(
+                        (a.min().x.min(b.min().x), a.min().y.min(b.min().y)),
+                        (a.max().x.max(b.max().x), a.max().y.max(b.max().y)),
+                    )
+                });
+            let (lo, hi) = rect.map_or((Point::origin(), Point::origin()), |r| {
+                (
+                    Point::new(r.min().x, r.min().y),
+                    Point::new(r.max().x, r.max().y),
+                )
+            });
+            boxes.push(window(lo, hi));
+        }
+        if let Some(spot) = self.spot {
+            let r = Point::new(spot.radius, spot.radius);
+            boxes.push(window(spot.centre - r.coords, spot.centre + r.coords));
+        }
+        boxes.into_iter().reduce(|a, b| {
+            let (r0, c0) = (a.0.max(b.0), a.2.max(b.2));
+            (r0, a.1.min(b.1).max(r0), c0, a.3.min(b.3).max(c0))
+        })
+    }
+
     /// `map` with every cell the keep-out areas meet and the virtual walls
     /// touch made occupied, and how many free cells that blocked (the map
     /// itself when there is no keep-out).

@@ -360,3 +360,68 @@ fn large_polygons_are_checked_quickly() {
     let e = parse_areas(&ring(MAX_POLYGON_POSITIONS + 1, false), Kinds::Polygons).unwrap_err();
     assert!(e.contains("at most 10000 per polygon"), "{e}");
 }
+
+/// A target's window holds every cell centre its zones and its spot take
+/// in, on a turned map too; with both, the cells both take in; none
+/// without either.
+#[test]
+fn the_extent_holds_every_cell_the_zones_and_spot_take_in() {
+    for yaw in [0.0, 0.7] {
+        let cells = Grid::new(40, 30, oxcover_grid::Occupancy::Free);
+        let map = oxcover_grid::OccupancyGrid::new(cells, 0.5, Point::new(-3.0, 2.0)).with_yaw(yaw);
+        let f = map.frame();
+        let (a, b) = (
+            f.cell_center(Cell::new(5, 7)),
+            f.cell_center(Cell::new(12, 20)),
+        );
+        let zone = polygon![(x: a.x, y: a.y), (x: b.x, y: a.y), (x: b.x, y: b.y), (x: a.x, y: b.y)];
+        let spot = Spot::new(f.cell_center(Cell::new(14, 18)), 2.2).unwrap();
+        let zones = Some(Areas {
+            polygons: vec![zone.clone()],
+            lines: Vec::new(),
+        });
+        let cases = [
+            (zones.clone(), None),
+            (None, Some(spot)),
+            (zones.clone(), Some(spot)),
+        ];
+        for (zones, spot) in cases {
+            let t = Targets {
+                zones: zones.clone(),
+                spot,
+                ..Targets::default()
+            };
+            let (r0, r1, c0, c1) = t.extent(&map).expect("a window");
+            let mut inside = Grid::new(40, 30, true);
+            if zones.is_some() {
+                inside.fill(false);
+                polygon_centres(f, &zone, &mut inside);
+            }
+            if let Some(s) = spot {
+                let mut disc = Grid::new(40, 30, false);
+                disc_centres(f, s.centre, s.radius, &mut disc);
+                inside = inside.zip_map(&disc, |&a, &b| a && b);
+            }
+            assert!(
+                inside.count_true() > 0,
+                "yaw {yaw} zones {} spot {}",
+                zones.is_some(),
+                spot.is_some()
+            );
+            for c in inside.true_cells() {
+                assert!(
+                    (r0..r1).contains(&c.row) && (c0..c1).contains(&c.col),
+                    "{c:?} outside {:?} (yaw {yaw})",
+                    (r0, r1, c0, c1)
+                );
+            }
+            // No more than a cell or two beyond the cells taken in.
+            assert!(
+                (r1 - r0) * (c1 - c0) < 40 * 30 / 2,
+                "{:?}",
+                (r0, r1, c0, c1)
+            );
+        }
+    }
+    assert_eq!(Targets::default().extent(&room()), None);
+}
