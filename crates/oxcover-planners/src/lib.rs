@@ -83,5 +83,5 @@ pub use problem::{
     largest_region_start,
 };
 pub use registry::{build, find, registry};
-pub use room_tour::{ANY_UNIT, RoomUnits, room_order, unit_claims, unit_exits};
+pub use room_tour::{ANY_UNIT, RoomUnits, room_order, unit_claims, unit_exits, unit_exits_with};
 pub use time::TimeModel;

@@ -182,35 +182,47 @@ impl RoomUnits {
         ))
     }
 
-    /// Each unit's anchor: its cell nearest to the unit's centroid.
+    /// Each unit's cells in row-major order (`cells_by_unit()[u - 1]` for
+    /// unit `u`), read row by row within the units' bounding box.
     #[must_use]
-    pub fn anchors(&self) -> Vec<Cell> {
-        let n = self.count();
-        let mut sum = vec![(0.0, 0.0); n];
-        for c in self.labels.cells() {
-            let l = self.labels[c] as usize;
-            if l > 0 {
-                sum[l - 1].0 += c.row as f64;
-                sum[l - 1].1 += c.col as f64;
-            }
-        }
-        let centre: Vec<(f64, f64)> = sum
-            .iter()
-            .zip(&self.sizes)
-            .map(|(s, &k)| (s.0 / k.max(1) as f64, s.1 / k.max(1) as f64))
-            .collect();
-        let mut best: Vec<(f64, Cell)> = vec![(f64::INFINITY, Cell::default()); n];
-        for c in self.labels.cells() {
-            let l = self.labels[c] as usize;
-            if l > 0 {
-                let d = (c.row as f64 - centre[l - 1].0).powi(2)
-                    + (c.col as f64 - centre[l - 1].1).powi(2);
-                if d < best[l - 1].0 {
-                    best[l - 1] = (d, c);
+    pub fn cells_by_unit(&self) -> Vec<Vec<Cell>> {
+        let mut cells: Vec<Vec<Cell>> = self.sizes.iter().map(|&n| Vec::with_capacity(n)).collect();
+        let w = self.labels.width();
+        let Some((r0, r1, c0, c1)) = self.labels.bounding_box(|&l| l != 0) else {
+            return cells;
+        };
+        for r in r0..r1 {
+            let row = &self.labels.as_slice()[r * w + c0..r * w + c1];
+            for (c, &l) in row.iter().enumerate() {
+                if let Some(v) = (l as usize).checked_sub(1).and_then(|i| cells.get_mut(i)) {
+                    v.push(Cell::new(r, c0 + c));
                 }
             }
         }
-        best.into_iter().map(|(_, c)| c).collect()
+        cells
+    }
+
+    /// Each unit's anchor: its cell nearest to the unit's centroid.
+    #[must_use]
+    pub fn anchors(&self) -> Vec<Cell> {
+        self.cells_by_unit()
+            .iter()
+            .map(|cells| {
+                let k = cells.len().max(1) as f64;
+                let (sr, sc) = cells
+                    .iter()
+                    .fold((0.0, 0.0), |(a, b), c| (a + c.row as f64, b + c.col as f64));
+                let centre = (sr / k, sc / k);
+                let mut best = (f64::INFINITY, Cell::default());
+                for &c in cells {
+                    let d = (c.row as f64 - centre.0).powi(2) + (c.col as f64 - centre.1).powi(2);
+                    if d < best.0 {
+                        best = (d, c);
+                    }
+                }
+                best.1
+            })
+            .collect()
     }
 }
 
@@ -312,6 +324,12 @@ pub fn unit_claims(problem: &CoverageProblem, units: &RoomUnits) -> Grid<u32> {
         c0.saturating_sub(k_cells),
         (c1 + k_cells).min(w),
     );
+    // The offsets within reach, nearest first.
+    let mut offsets: Vec<(isize, isize, isize)> = (-k..=k)
+        .flat_map(|dr| (-k..=k).map(move |dc| (dr, dc, dr * dr + dc * dc)))
+        .filter(|&(_, _, d2)| d2 as f64 <= tool * tool)
+        .collect();
+    offsets.sort_by_key(|&(dr, dc, d2)| (d2, dr, dc));
     let near = Grid::from_fn(window.3 - window.2, window.1 - window.0, |at: Cell| {
         let c = Cell::new(at.row + window.0, at.col + window.2);
         if !coverable[c] {
@@ -320,27 +338,27 @@ pub fn unit_claims(problem: &CoverageProblem, units: &RoomUnits) -> Grid<u32> {
         if labels[c] != 0 {
             return labels[c];
         }
-        let mut best = (f64::INFINITY, 0u32);
-        for dr in -k..=k {
-            for dc in -k..=k {
-                let d2 = (dr * dr + dc * dc) as f64;
-                if d2 > tool * tool || d2 > best.0 {
-                    continue;
-                }
-                let (r, q) = (c.row as isize + dr, c.col as isize + dc);
-                if r < 0 || q < 0 {
-                    continue;
-                }
-                let Some(&l) = labels.get(Cell::new(r as usize, q as usize)) else {
-                    continue;
-                };
-                if l != 0 && (d2, l) < best {
-                    best = (d2, l);
-                }
+        // The nearest unit cell within reach, of equally near ones the
+        // lowest unit: offsets nearest first, up to the first distance
+        // that finds one.
+        let mut best: Option<(isize, u32)> = None;
+        for &(dr, dc, d2) in &offsets {
+            if best.is_some_and(|(d, _)| d2 > d) {
+                break;
+            }
+            let (r, q) = (c.row as isize + dr, c.col as isize + dc);
+            if r < 0 || q < 0 {
+                continue;
+            }
+            if let Some(&l) = labels.get(Cell::new(r as usize, q as usize))
+                && l != 0
+                && best.is_none_or(|(_, b)| l < b)
+            {
+                best = Some((d2, l));
             }
         }
         // None found (cannot happen for a coverable cell): every unit.
-        if best.1 == 0 { ANY_UNIT } else { best.1 }
+        best.map_or(ANY_UNIT, |(_, l)| l)
     });
     claims.paste(Cell::new(window.0, window.2), &near);
     claims
@@ -359,25 +377,28 @@ pub fn unit_exits(
     units: &RoomUnits,
     order: &[u32],
 ) -> Vec<Option<Cell>> {
-    let plannable = problem.plannable();
-    // Each unit's cells, gathered in one scan.
-    let mut cells_of: Vec<Vec<Cell>> = vec![Vec::new(); units.count() + 1];
-    for c in units.labels.cells() {
-        if let Some(v) = cells_of.get_mut(units.labels[c] as usize) {
-            v.push(c);
-        }
-    }
+    unit_exits_with(&problem.transit_wavefront(), units, order)
+}
+
+/// [`unit_exits`] with a wavefront over the problem's plannable cells
+/// ([`CoverageProblem::transit_wavefront`]) at hand: its searches work on
+/// copies of it (building one costs a pass over the map).
+#[must_use]
+pub fn unit_exits_with(wave: &Wavefront, units: &RoomUnits, order: &[u32]) -> Vec<Option<Cell>> {
+    let cells_of = units.cells_by_unit();
     // Each step of the order on its own (in parallel, each search with its
-    // own copy of one wavefront; in the order's order whatever the thread
+    // own copy of the wavefront; in the order's order whatever the thread
     // count).
-    let wave = Wavefront::new(plannable);
     let mut exits: Vec<Option<Cell>> = order
         .par_windows(2)
         .map_init(
             || wave.clone(),
             |wave, step| {
                 let (here, next) = (step[0], step[1]);
-                let sources = cells_of.get(next as usize).map_or(&[][..], Vec::as_slice);
+                let sources = (next as usize)
+                    .checked_sub(1)
+                    .and_then(|i| cells_of.get(i))
+                    .map_or(&[][..], Vec::as_slice);
                 let found = cidt(wave, sources, |c| units.labels[c] == here);
                 found.map(|f| f.first())
             },
@@ -519,6 +540,11 @@ mod tests {
                 let want = if u.labels[c] != 0 { u.labels[c] } else { nearest.map_or(ANY_UNIT, |n| n.1) };
                 proptest::prop_assert_eq!(claims[c], want, "{:?}", c);
             }
+            // Each unit's cells, row by row, as a scan of every cell.
+            let by_unit: Vec<Vec<Cell>> = (1..=u.count() as u32)
+                .map(|l| unit_cells.iter().copied().filter(|&c| u.labels[c] == l).collect())
+                .collect();
+            proptest::prop_assert_eq!(u.cells_by_unit(), by_unit);
             // Exits: one search over every plannable cell per step.
             let order: Vec<u32> = (1..=u.count() as u32).collect();
             let mut wave = Wavefront::new(p.plannable());

@@ -9,7 +9,7 @@ use std::time::Instant;
 use oxcover_decomp::{RoomParams, Rooms, voronoi};
 use oxcover_grid::{Cell, Grid, OccupancyGrid, Point};
 use oxcover_planners::{
-    BoundaryRoute, CoverageProblem, RoomUnits, room_order, unit_claims, unit_exits,
+    BoundaryRoute, CoverageProblem, RoomUnits, room_order, unit_claims, unit_exits_with,
 };
 
 use super::region::{
@@ -164,7 +164,8 @@ pub(super) fn plan_rooms(
     t0: Instant,
 ) -> Result<PlanOutcome> {
     let order = order.unwrap_or_else(|| room_order(problem, units));
-    let exits = unit_exits(problem, units, &order);
+    let mut wave = problem.transit_wavefront();
+    let exits = unit_exits_with(&wave, units, &order);
     let claims = unit_claims(problem, units);
     let bounds = units.bounds();
     let plan_cells = problem.plannable().count_true();
@@ -175,7 +176,6 @@ pub(super) fn plan_rooms(
     let mut in_pass: Vec<bool> = Vec::new();
     let mut here = problem.start_cell();
     let mut stretches = Vec::with_capacity(order.len());
-    let mut wave = problem.transit_wavefront();
     for (i, &u) in order.iter().enumerate() {
         // The start may lie outside every unit (a coverage target).
         let transit = i > 0 || units.labels[here] != u;
