@@ -102,7 +102,20 @@ pub(crate) fn heading_change(u: Vector, v: Vector) -> f64 {
     if u.norm_squared() < 1e-24 || v.norm_squared() < 1e-24 {
         return 0.0;
     }
-    (u.x * v.y - u.y * v.x).atan2(u.x * v.x + u.y * v.y).abs()
+    let (y, x) = (u.x * v.y - u.y * v.x, u.x * v.x + u.y * v.y);
+    // Straight on, square and back: the values `atan2` gives exactly,
+    // without its software routine (x86-64's baseline has no instruction).
+    if y == 0.0 {
+        if x > 0.0 {
+            return 0.0;
+        }
+        if x < 0.0 {
+            return std::f64::consts::PI;
+        }
+    } else if x == 0.0 {
+        return std::f64::consts::FRAC_PI_2;
+    }
+    y.atan2(x).abs()
 }
 
 /// Seconds to drive `pts`, turning on the spot at each vertex.

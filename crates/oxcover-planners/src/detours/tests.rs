@@ -532,3 +532,29 @@ fn capsule_span(a: GridPoint, b: GridPoint, r: f64, y: f64) -> Option<(f64, f64)
     }
     (lo <= hi).then_some((lo, hi))
 }
+
+/// The heading change is `atan2`'s angle between the two directions, to
+/// the bit, also where it answers straight on, square and back without it.
+#[test]
+fn heading_change_is_the_angle_between() {
+    let dirs = [-3.0, -1.0, -0.5, 0.0, 0.25, 1.0, 2.0, 1e-13];
+    for &ux in &dirs {
+        for &uy in &dirs {
+            for &vx in &dirs {
+                for &vy in &dirs {
+                    let (u, v) = (Vector::new(ux, uy), Vector::new(vx, vy));
+                    let want = if u.norm() < 1e-12 || v.norm() < 1e-12 {
+                        0.0
+                    } else {
+                        (u.x * v.y - u.y * v.x).atan2(u.x * v.x + u.y * v.y).abs()
+                    };
+                    assert_eq!(
+                        heading_change(u, v).to_bits(),
+                        want.to_bits(),
+                        "{u:?} {v:?}"
+                    );
+                }
+            }
+        }
+    }
+}
