@@ -297,7 +297,7 @@ fn transit_block(tool: f64) -> usize {
 
 /// Most plannable cells a transit table searches cell by cell (small
 /// regions, where the searches cost little, keep exact ratios).
-const TRANSIT_EXACT_CELLS: usize = 40_000;
+const TRANSIT_EXACT_CELLS: usize = 20_000;
 
 /// Largest side of a transit block (cells).
 const TRANSIT_BLOCK_MAX: usize = 4;
