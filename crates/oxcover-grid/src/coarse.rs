@@ -18,6 +18,8 @@
 use std::collections::VecDeque;
 use std::ops::Range;
 
+use rayon::prelude::*;
+
 use crate::frame::MapFrame;
 use crate::grid::{Cell, Dir4, Grid};
 use crate::math::Point;
@@ -41,7 +43,7 @@ impl CoarseGrid {
         let (cw, ch) = (fw.div_ceil(k), fh.div_ceil(k));
         // Each block's representative, and whether all its cells are
         // plannable (two such blocks side by side are linked: no search).
-        let blocks = Grid::from_fn(cw, ch, |b| {
+        let blocks = Grid::par_from_fn(cw, ch, |b| {
             let mut best: Option<(usize, Cell)> = None;
             let mut open = 0;
             // Doubled coordinates keep the nominal centre integral.
@@ -74,19 +76,30 @@ impl CoarseGrid {
             moves: Grid::new(cw, ch, 0),
             reps,
         };
-        let mut scratch = Window::default();
-        for b in grid.reps.cells() {
-            for dir in [Dir4::East, Dir4::South] {
-                let Some(n) = grid.reps.step(b, dir) else {
-                    continue;
-                };
-                let linked = match (grid.reps[b], grid.reps[n]) {
-                    (Some(a), Some(z)) if k == 1 => plannable[a] && plannable[z],
-                    (Some(_), Some(_)) if blocks[b].1 && blocks[n].1 => true,
-                    (Some(_), Some(_)) => grid.window_path(plannable, b, n, &mut scratch).is_some(),
-                    _ => false,
-                };
-                if linked {
+        // Each block's links east and south, found in parallel (each task
+        // with its own scratch window; the same whatever the thread count).
+        const DIRS: [Dir4; 2] = [Dir4::East, Dir4::South];
+        let links: Vec<[bool; 2]> = (0..cw * ch)
+            .into_par_iter()
+            .map_init(Window::default, |scratch, i| {
+                let b = Cell::new(i / cw, i % cw);
+                DIRS.map(|dir| {
+                    let Some(n) = grid.reps.step(b, dir) else {
+                        return false;
+                    };
+                    match (grid.reps[b], grid.reps[n]) {
+                        (Some(a), Some(z)) if k == 1 => plannable[a] && plannable[z],
+                        (Some(_), Some(_)) if blocks[b].1 && blocks[n].1 => true,
+                        (Some(_), Some(_)) => grid.window_path(plannable, b, n, scratch).is_some(),
+                        _ => false,
+                    }
+                })
+            })
+            .collect();
+        for (i, pair) in links.into_iter().enumerate() {
+            let b = Cell::new(i / cw, i % cw);
+            for (dir, linked) in DIRS.into_iter().zip(pair) {
+                if let (true, Some(n)) = (linked, grid.reps.step(b, dir)) {
                     grid.moves[b] |= dir.bit();
                     grid.moves[n] |= dir.opposite().bit();
                 }
