@@ -1,8 +1,11 @@
 //! 4-connected components and the reachable set from a start.
 //!
-//! Scan-order flood fill with an explicit stack of row runs (each run filled
-//! at once, one seed per run beside it): O(cells), no recursion, labels
-//! numbered in row-major order of each component's first cell.
+//! Components by row runs: each row's runs found in parallel, runs that
+//! overlap the row above joined in a union-find over runs, labels numbered
+//! in row-major order of each component's first cell, rows filled in
+//! parallel. The reachable set by a flood fill with an explicit stack of
+//! row runs (each run filled at once, one seed per run beside it). Both
+//! O(cells), no recursion.
 
 use crate::grid::{Cell, Grid};
 
@@ -43,27 +46,11 @@ impl Components {
 }
 
 /// Labels the 4-connected components of the `true` cells, numbered from 1
-/// in row-major order of their first cells (filled by index, a row's run
-/// at a time: this reads every cell).
+/// in row-major order of their first cells (by row runs joined in a
+/// union-find, as the module's page says).
 #[must_use]
 pub fn components4(mask: &Grid<bool>) -> Components {
-    let mut labels = Grid::new(mask.width(), mask.height(), 0u32);
-    let mut sizes = Vec::new();
-    let mut stack = Vec::new();
-    for start in 0..mask.len() {
-        if !mask.as_slice()[start] || labels.as_slice()[start] != 0 {
-            continue;
-        }
-        let label = sizes.len() as u32 + 1;
-        sizes.push(fill_runs(
-            (mask.width(), mask.height()),
-            |i| mask.as_slice()[i],
-            start,
-            (labels.as_mut_slice(), 0, label),
-            &mut stack,
-        ));
-    }
-    Components { labels, sizes }
+    label_runs(mask, None)
 }
 
 /// Labels the 4-connected components of the `true` cells of `mask` whose
@@ -80,24 +67,105 @@ pub fn components4_by_class(mask: &Grid<bool>, class: &Grid<u32>) -> Components 
         (class.width(), class.height()),
         "classes must cover the mask cell for cell"
     );
-    let mut labels = Grid::new(mask.width(), mask.height(), 0u32);
-    let mut sizes = Vec::new();
-    let mut stack = Vec::new();
-    let (set, of) = (mask.as_slice(), class.as_slice());
-    for start in 0..mask.len() {
-        if !set[start] || labels.as_slice()[start] != 0 {
-            continue;
-        }
-        let label = sizes.len() as u32 + 1;
-        let here = of[start];
-        sizes.push(fill_runs(
-            (mask.width(), mask.height()),
-            |i| set[i] && of[i] == here,
-            start,
-            (labels.as_mut_slice(), 0, label),
-            &mut stack,
-        ));
+    label_runs(mask, Some(class.as_slice()))
+}
+
+/// Components by row runs: each row's runs of set cells (of one class)
+/// found in parallel, runs that overlap a run of the row above (of the
+/// same class) joined in a union-find whose root is always the set's first
+/// run (so the first in row-major order, which holds the component's
+/// first cell), labels given to the roots in run order, and the rows
+/// filled in parallel. The same labels whatever the thread count.
+fn label_runs(mask: &Grid<bool>, class: Option<&[u32]>) -> Components {
+    use rayon::prelude::*;
+    let (w, h) = (mask.width(), mask.height());
+    let mut labels = Grid::new(w, h, 0u32);
+    if w == 0 || h == 0 {
+        return Components {
+            labels,
+            sizes: Vec::new(),
+        };
     }
+    let set = mask.as_slice();
+    let class_at = |i: usize| class.map_or(0, |k| k[i]);
+    // Each row's runs: (first column, end column, class).
+    let rows: Vec<Vec<(usize, usize, u32)>> = (0..h)
+        .into_par_iter()
+        .map(|r| {
+            let row = &set[r * w..(r + 1) * w];
+            let mut runs = Vec::new();
+            let mut c = 0;
+            while c < w {
+                if !row[c] {
+                    c += 1;
+                    continue;
+                }
+                let k = class_at(r * w + c);
+                let start = c;
+                while c < w && row[c] && class_at(r * w + c) == k {
+                    c += 1;
+                }
+                runs.push((start, c, k));
+            }
+            runs
+        })
+        .collect();
+    let mut first = Vec::with_capacity(h + 1);
+    first.push(0);
+    for runs in &rows {
+        first.push(first[first.len() - 1] + runs.len());
+    }
+    let all: Vec<(usize, usize, u32)> = rows.iter().flatten().copied().collect();
+    // Union-find over the runs, the smaller index the root.
+    let mut parent: Vec<usize> = (0..all.len()).collect();
+    let find = |parent: &mut Vec<usize>, mut x: usize| {
+        while parent[x] != x {
+            parent[x] = parent[parent[x]];
+            x = parent[x];
+        }
+        x
+    };
+    for r in 1..h {
+        let (above, here) = (first[r - 1]..first[r], first[r]..first[r + 1]);
+        let (mut i, mut j) = (above.start, here.start);
+        while i < above.end && j < here.end {
+            let (a, b) = (all[i], all[j]);
+            if a.0 < b.1 && b.0 < a.1 && a.2 == b.2 {
+                let (ra, rb) = (find(&mut parent, i), find(&mut parent, j));
+                let (lo, hi) = (ra.min(rb), ra.max(rb));
+                parent[hi] = lo;
+            }
+            // The run that ends first meets nothing further on.
+            if a.1 <= b.1 {
+                i += 1;
+            } else {
+                j += 1;
+            }
+        }
+    }
+    // Labels in run order (row-major order of first cells), sizes.
+    let mut label_of = vec![0u32; all.len()];
+    let mut sizes: Vec<usize> = Vec::new();
+    for i in 0..all.len() {
+        let root = find(&mut parent, i);
+        if root == i {
+            sizes.push(0);
+            label_of[i] = sizes.len() as u32;
+        } else {
+            label_of[i] = label_of[root];
+        }
+        sizes[label_of[i] as usize - 1] += all[i].1 - all[i].0;
+    }
+    labels
+        .as_mut_slice()
+        .par_chunks_mut(w)
+        .enumerate()
+        .for_each(|(r, row)| {
+            for i in first[r]..first[r + 1] {
+                let (a, b, _) = all[i];
+                row[a..b].fill(label_of[i]);
+            }
+        });
     Components { labels, sizes }
 }
 
