@@ -44,6 +44,7 @@
 use std::collections::VecDeque;
 
 use oxcover_grid::edt::boundary_distance_sq4;
+use oxcover_grid::grid::nearest_first;
 use oxcover_grid::{Cell, Grid, components4};
 use rayon::prelude::*;
 
@@ -121,7 +122,7 @@ pub fn voronoi(free: &Grid<bool>, params: &RoomParams) -> Rooms {
     // leads into (an office's doorway to the office, not to the corridor).
     // Offsets as far as the widest candidate's search reaches.
     let widest = candidates.iter().map(|&(d, _)| d).max().unwrap_or(0);
-    let nearest_first = nearest_first(((widest as f64).sqrt() / 2.0 + 2.0).ceil() as isize);
+    let nearest_first = nearest_first(((widest as f64).sqrt() / 2.0 + 2.0).ceil() as usize);
     let mut candidates: Vec<(u64, u32, Cell)> = candidates
         .into_par_iter()
         .filter_map(|(d, c)| {
@@ -357,16 +358,6 @@ fn openings(
         None
     };
     Some([side(1.0)?, side(-1.0)?])
-}
-
-/// The offsets of the square of `k` cells round a cell, nearest first, of
-/// equally near ones the first a row-major scan of the square meets.
-fn nearest_first(k: isize) -> Vec<(isize, isize)> {
-    let mut offsets: Vec<(isize, isize)> = (-k..=k)
-        .flat_map(|dr| (-k..=k).map(move |dc| (dr, dc)))
-        .collect();
-    offsets.sort_by_key(|&(dr, dc)| (dr * dr + dc * dc, dr, dc));
-    offsets
 }
 
 /// The clearance (4·d²) where a climb from `c` to ever wider neighbours

@@ -223,13 +223,7 @@ pub fn coverable_cells(free: &Grid<bool>, centres: &Grid<bool>, tool_cells: f64)
     let Some((r0, r1, c0, c1)) = centres.bounding_box(|&b| b) else {
         return Grid::new(free.width(), free.height(), false);
     };
-    let k = reach.ceil() as usize;
-    let window = (
-        r0.saturating_sub(k),
-        r1.saturating_add(k).min(free.height()),
-        c0.saturating_sub(k),
-        c1.saturating_add(k).min(free.width()),
-    );
+    let window = free.widen((r0, r1, c0, c1), reach.ceil() as usize);
     // An integer d² is at most reach² when at most its floor.
     let limit = (reach * reach).floor() as u64;
     if window == (0, free.height(), 0, free.width()) {

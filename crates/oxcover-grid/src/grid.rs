@@ -425,6 +425,22 @@ impl<T> Grid<T> {
         (r0 < r1).then_some((r0, r1, c0, c1))
     }
 
+    /// The window `(r0, r1, c0, c1)` widened by `k` cells on every side,
+    /// cut to this grid (saturating: a huge `k` takes the whole grid).
+    #[must_use]
+    pub fn widen(
+        &self,
+        (r0, r1, c0, c1): (usize, usize, usize, usize),
+        k: usize,
+    ) -> (usize, usize, usize, usize) {
+        (
+            r0.saturating_sub(k),
+            r1.saturating_add(k).min(self.height),
+            c0.saturating_sub(k),
+            c1.saturating_add(k).min(self.width),
+        )
+    }
+
     /// The window `(r0, r1, c0, c1)` (rows `r0..r1`, columns `c0..c1`, as
     /// [`Grid::bounding_box`] gives it) as a grid of its own.
     ///
@@ -541,6 +557,20 @@ impl<T> IndexMut<Cell> for Grid<T> {
     }
 }
 
+/// The offsets `(dr, dc)` of the square of `k` cells round a cell, nearest
+/// first; of equally near ones, first the one a row-major scan of the
+/// square meets first. A search that takes the first offset it accepts
+/// then finds the nearest cell, ties broken as a scan would break them.
+#[must_use]
+pub fn nearest_first(k: usize) -> Vec<(isize, isize)> {
+    let k = k as isize;
+    let mut offsets: Vec<(isize, isize)> = (-k..=k)
+        .flat_map(|dr| (-k..=k).map(move |dc| (dr, dc)))
+        .collect();
+    offsets.sort_by_key(|&(dr, dc)| (dr * dr + dc * dc, dr, dc));
+    offsets
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -569,6 +599,20 @@ mod tests {
             });
             assert_eq!(g.bounding_box(|&v| v), brute, "seed {seed}");
         }
+    }
+
+    #[test]
+    fn offsets_come_nearest_first_and_windows_widen_within_the_grid() {
+        let o = nearest_first(2);
+        assert_eq!(o.len(), 25);
+        assert_eq!(&o[..5], &[(0, 0), (-1, 0), (0, -1), (0, 1), (1, 0)]);
+        assert!(o.windows(2).all(|w| {
+            let d = |(r, c): (isize, isize)| r * r + c * c;
+            (d(w[0]), w[0]) < (d(w[1]), w[1])
+        }));
+        let g = Grid::new(10, 8, 0u8);
+        assert_eq!(g.widen((2, 4, 3, 5), 2), (0, 6, 1, 7));
+        assert_eq!(g.widen((2, 4, 3, 5), usize::MAX), (0, 8, 0, 10));
     }
 
     #[test]

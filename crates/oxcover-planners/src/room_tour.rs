@@ -18,6 +18,7 @@ use rayon::prelude::*;
 
 use oxcover_decomp::merge_small_regions;
 use oxcover_distance::{Wavefront, cidt};
+use oxcover_grid::grid::nearest_first;
 use oxcover_grid::{Cell, Components, Grid, components4_by_class};
 
 use crate::error::{Error, Result};
@@ -317,19 +318,13 @@ pub fn unit_claims(problem: &CoverageProblem, units: &RoomUnits) -> Grid<u32> {
     let Some((r0, r1, c0, c1)) = labels.bounding_box(|&l| l != 0) else {
         return claims;
     };
-    let (w, h) = (coverable.width(), coverable.height());
-    let window = (
-        r0.saturating_sub(k_cells),
-        (r1 + k_cells).min(h),
-        c0.saturating_sub(k_cells),
-        (c1 + k_cells).min(w),
-    );
+    let window = coverable.widen((r0, r1, c0, c1), k_cells);
     // The offsets within reach, nearest first.
-    let mut offsets: Vec<(isize, isize, isize)> = (-k..=k)
-        .flat_map(|dr| (-k..=k).map(move |dc| (dr, dc, dr * dr + dc * dc)))
+    let offsets: Vec<(isize, isize, isize)> = nearest_first(k_cells)
+        .into_iter()
+        .map(|(dr, dc)| (dr, dc, dr * dr + dc * dc))
         .filter(|&(_, _, d2)| d2 as f64 <= tool * tool)
         .collect();
-    offsets.sort_by_key(|&(dr, dc, d2)| (d2, dr, dc));
     let near = Grid::from_fn(window.3 - window.2, window.1 - window.0, |at: Cell| {
         let c = Cell::new(at.row + window.0, at.col + window.2);
         if !coverable[c] {

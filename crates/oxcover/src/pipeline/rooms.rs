@@ -70,19 +70,14 @@ impl<'m> PlanRooms<'m> {
         let res = map.resolution();
         let margin = ((LOCAL_ROOMS_MARGIN_M + request.robot.tool_radius) / res).ceil();
         let (w, h) = (map.width(), map.height());
-        let window = request.targets.extent(map).and_then(|(r0, r1, c0, c1)| {
-            // Saturating: a huge margin takes the whole map.
+        let window = request.targets.extent(map).and_then(|extent| {
+            // (A huge margin takes the whole map.)
             let k = if margin.is_finite() {
                 margin as usize
             } else {
                 usize::MAX
             };
-            let win = (
-                r0.saturating_sub(k),
-                r1.saturating_add(k).min(h),
-                c0.saturating_sub(k),
-                c1.saturating_add(k).min(w),
-            );
+            let win = map.cells().widen(extent, k);
             (2 * (win.1 - win.0) * (win.3 - win.2) <= w * h).then_some(win)
         });
         match window {
