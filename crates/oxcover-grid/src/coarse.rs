@@ -90,7 +90,7 @@ impl CoarseGrid {
                     match (grid.reps[b], grid.reps[n]) {
                         (Some(a), Some(z)) if k == 1 => plannable[a] && plannable[z],
                         (Some(_), Some(_)) if blocks[b].1 && blocks[n].1 => true,
-                        (Some(_), Some(_)) => grid.window_path(plannable, b, n, scratch).is_some(),
+                        (Some(_), Some(_)) => grid.window_linked(plannable, b, n, scratch),
                         _ => false,
                     }
                 })
@@ -208,6 +208,31 @@ impl CoarseGrid {
         let cols = ca.start.min(cb.start)..ca.end.max(cb.end);
         w.shortest(plannable, rows, cols, from, to)
     }
+
+    /// Whether [`Self::window_path`] finds a path (the same answer, found
+    /// by row masks where the window is at most 64 columns wide).
+    fn window_linked(&self, plannable: &Grid<bool>, a: Cell, b: Cell, w: &mut Window) -> bool {
+        let (Some(from), Some(to)) = (self.representative(a), self.representative(b)) else {
+            return false;
+        };
+        let (ra, ca) = self.block_cells(a);
+        let (rb, cb) = self.block_cells(b);
+        let rows = ra.start.min(rb.start)..ra.end.max(rb.end);
+        let cols = ca.start.min(cb.start)..ca.end.max(cb.end);
+        if cols.len() > 64 {
+            return w.shortest(plannable, rows, cols, from, to).is_some();
+        }
+        w.linked(plannable, rows, cols, from, to)
+    }
+}
+
+/// The cells of the runs of `open` that hold a cell of `seed` (a subset of
+/// `open`), a row of a window as bits: adding a seed's bit to its run
+/// carries through the run's bits above it (the bits that flip), and the
+/// same with the bits reversed fills the run below it.
+fn fill_runs(seed: u64, open: u64) -> u64 {
+    let up = |s: u64, o: u64| ((o.wrapping_add(s) ^ o) | s) & o;
+    up(seed, open) | up(seed.reverse_bits(), open.reverse_bits()).reverse_bits()
 }
 
 /// Reusable BFS scratch over a small rectangular window.
@@ -215,10 +240,70 @@ impl CoarseGrid {
 struct Window {
     parent: Vec<u32>,
     queue: VecDeque<u32>,
+    /// Per row of a window of at most 64 columns: its plannable cells and
+    /// those reached, as bits.
+    open: Vec<u64>,
+    reached: Vec<u64>,
 }
 
 impl Window {
     const NONE: u32 = u32::MAX;
+
+    /// Whether a 4-connected path of `plannable` cells inside the window
+    /// joins `from` to `to` (both plannable, in the window of at most 64
+    /// columns): the cells reached, row by row as bits, grown over whole
+    /// runs of a row and into the rows above and below, sweeping down and
+    /// up until nothing grows.
+    fn linked(
+        &mut self,
+        plannable: &Grid<bool>,
+        rows: Range<usize>,
+        cols: Range<usize>,
+        from: Cell,
+        to: Cell,
+    ) -> bool {
+        debug_assert!(cols.len() <= 64);
+        self.open.clear();
+        self.open.extend(rows.clone().map(|r| {
+            plannable.row(r)[cols.clone()]
+                .iter()
+                .enumerate()
+                .fold(0u64, |m, (i, &p)| m | (u64::from(p) << i))
+        }));
+        let h = rows.len();
+        self.reached.clear();
+        self.reached.resize(h, 0);
+        let bit = |c: Cell| 1u64 << (c.col - cols.start);
+        let (r0, r1) = (from.row - rows.start, to.row - rows.start);
+        self.reached[r0] = fill_runs(bit(from) & self.open[r0], self.open[r0]);
+        let (open, reached) = (&self.open, &mut self.reached);
+        // Grows row `r` from its neighbours; whether it grew.
+        let grow = |reached: &mut [u64], r: usize| {
+            let mut seed = reached[r];
+            if r > 0 {
+                seed |= reached[r - 1];
+            }
+            if r + 1 < h {
+                seed |= reached[r + 1];
+            }
+            let new = fill_runs(seed & open[r], open[r]);
+            let grew = new != reached[r];
+            reached[r] = new;
+            grew
+        };
+        loop {
+            let mut grew = false;
+            for r in (0..h).chain((0..h).rev()) {
+                grew |= grow(reached, r);
+            }
+            if reached[r1] & bit(to) != 0 {
+                return true;
+            }
+            if !grew {
+                return false;
+            }
+        }
+    }
 
     fn shortest(
         &mut self,
@@ -326,8 +411,37 @@ mod tests {
         );
     }
 
+    #[test]
+    fn runs_fill_from_their_seeds() {
+        // Runs 0-2, 4-5, 7-9 and 63; seeds in the first, at the end of the
+        // last two.
+        let open = 0b11_1011_0111 | 1 << 63;
+        assert_eq!(fill_runs(0b10, open), 0b111);
+        assert_eq!(fill_runs(1 << 9 | 1 << 63, open), 0b11_1000_0000 | 1 << 63);
+        assert_eq!(fill_runs(0, open), 0);
+        assert_eq!(fill_runs(0b101, open), 0b111);
+    }
+
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+        /// Row masks find a link exactly where the window search finds a
+        /// path, windows of up to 64 columns and wider (the search itself).
+        #[test]
+        fn masks_link_as_the_search_does(seed in 0u64..1000, density in 0.0f64..0.6, block in 1usize..40) {
+            let free = crate::random::random_density(90, 70, density, seed).free_mask();
+            let g = CoarseGrid::new(&free, block);
+            let mut w = Window::default();
+            for b in g.representatives().cells() {
+                for dir in [Dir4::East, Dir4::South] {
+                    let Some(n) = g.representatives().step(b, dir) else {
+                        continue;
+                    };
+                    let path = g.window_path(&free, b, n, &mut w).is_some();
+                    proptest::prop_assert_eq!(g.window_linked(&free, b, n, &mut w), path);
+                }
+            }
+        }
+
         /// Every move is the window search's answer (blocks whose cells are
         /// all plannable are linked without one).
         #[test]
