@@ -79,6 +79,22 @@ impl Coverability {
     /// [`Error::NoFreeCell`], [`Error::NoAdmissibleCell`], [`Error::StartOutsideMap`],
     /// [`Error::StartNotAdmissible`].
     pub fn new(map: &OccupancyGrid, robot: DiscRobot, start: Option<Point>) -> Result<Self> {
+        Self::new_within(map, robot, start, None)
+    }
+
+    /// [`Coverability::new`] with the coverable cells found only inside
+    /// `within` (rows `r0..r1`, columns `c0..c1`; none outside), where
+    /// only they are asked for (a zone's plan): the work costs the window,
+    /// not the map. `None`: everywhere.
+    ///
+    /// # Errors
+    /// As [`Coverability::new`].
+    pub fn new_within(
+        map: &OccupancyGrid,
+        robot: DiscRobot,
+        start: Option<Point>,
+        within: Option<Window>,
+    ) -> Result<Self> {
         let counts = map.counts();
         if counts.free == 0 {
             return Err(Error::NoFreeCell {
@@ -128,7 +144,7 @@ impl Coverability {
                 cell
             }
         };
-        Ok(Self::from_parts(map, robot, admissible, start))
+        Ok(Self::from_parts(map, robot, admissible, start, within))
     }
 
     /// Builds the problem from an admissible start cell (e.g. the `S` of an ASCII map).
@@ -136,8 +152,22 @@ impl Coverability {
     /// # Errors
     /// As [`Coverability::new`].
     pub fn with_start_cell(map: &OccupancyGrid, robot: DiscRobot, start: Cell) -> Result<Self> {
+        Self::with_start_cell_within(map, robot, start, None)
+    }
+
+    /// [`Coverability::with_start_cell`], coverable cells only inside
+    /// `within` ([`Coverability::new_within`]).
+    ///
+    /// # Errors
+    /// As [`Coverability::new`].
+    pub fn with_start_cell_within(
+        map: &OccupancyGrid,
+        robot: DiscRobot,
+        start: Cell,
+        within: Option<Window>,
+    ) -> Result<Self> {
         let p = map.frame().position(start.row as f64, start.col as f64);
-        Self::new(map, robot, Some(p))
+        Self::new_within(map, robot, Some(p), within)
     }
 
     /// Builds the problem from the first admissible cell (row-major) of the
@@ -150,6 +180,19 @@ impl Coverability {
     /// [`Error::NoFreeCell`], or [`Error::NoAdmissibleCell`] when no cell is
     /// admissible for the robot.
     pub fn in_largest_region(map: &OccupancyGrid, robot: DiscRobot) -> Result<Self> {
+        Self::in_largest_region_within(map, robot, None)
+    }
+
+    /// [`Coverability::in_largest_region`], coverable cells only inside
+    /// `within` ([`Coverability::new_within`]).
+    ///
+    /// # Errors
+    /// As [`Coverability::in_largest_region`].
+    pub fn in_largest_region_within(
+        map: &OccupancyGrid,
+        robot: DiscRobot,
+        within: Option<Window>,
+    ) -> Result<Self> {
         if map.counts().free == 0 {
             return Err(Error::NoFreeCell {
                 width: map.width(),
@@ -165,7 +208,11 @@ impl Coverability {
         let start = regions.first_cell(big).unwrap_or_default();
         let reachable = regions.labels.map(|&l| l == big);
         Ok(Self::with_reachable(
-            map, robot, admissible, start, reachable,
+            map,
+            robot,
+            admissible,
+            (start, reachable),
+            within,
         ))
     }
 
@@ -174,22 +221,24 @@ impl Coverability {
         robot: DiscRobot,
         admissible: Grid<bool>,
         start: Cell,
+        within: Option<Window>,
     ) -> Self {
         let reachable = reachable(&admissible, start);
-        Self::with_reachable(map, robot, admissible, start, reachable)
+        Self::with_reachable(map, robot, admissible, (start, reachable), within)
     }
 
     fn with_reachable(
         map: &OccupancyGrid,
         robot: DiscRobot,
         admissible: Grid<bool>,
-        start: Cell,
-        reachable: Grid<bool>,
+        (start, reachable): (Cell, Grid<bool>),
+        within: Option<Window>,
     ) -> Self {
-        let coverable = coverable_cells(
+        let coverable = coverable_cells_within(
             &map.free_mask(),
             &reachable,
             robot.tool_cells(map.resolution()),
+            within,
         );
         Self {
             robot,
@@ -207,35 +256,64 @@ impl Coverability {
     }
 }
 
+/// Rows `r0..r1` and columns `c0..c1` of a grid.
+pub type Window = (usize, usize, usize, usize);
+
 /// Free cells whose centre lies within `tool_cells` (in cells) of a `centres` cell centre.
 #[must_use]
 pub fn coverable_cells(free: &Grid<bool>, centres: &Grid<bool>, tool_cells: f64) -> Grid<bool> {
+    coverable_cells_within(free, centres, tool_cells, None)
+}
+
+/// [`coverable_cells`] inside `within` only (none outside; `None`: the
+/// whole grid): the transform runs on the window widened by the reach.
+#[must_use]
+pub fn coverable_cells_within(
+    free: &Grid<bool>,
+    centres: &Grid<bool>,
+    tool_cells: f64,
+    within: Option<Window>,
+) -> Grid<bool> {
+    let (w, h) = (free.width(), free.height());
+    let inside = |c: Cell| {
+        within.is_none_or(|(r0, r1, c0, c1)| (r0..r1).contains(&c.row) && (c0..c1).contains(&c.col))
+    };
     let reach = tool_cells + TOLERANCE_CELLS;
     if reach < 1.0 {
         // Only the centre cells themselves are within reach.
-        return Grid::from_fn(free.width(), free.height(), |c| free[c] && centres[c]);
+        return Grid::from_fn(w, h, |c| free[c] && centres[c] && inside(c));
     }
     if reach.is_nan() {
-        return Grid::new(free.width(), free.height(), false);
+        return Grid::new(w, h, false);
     }
+    let k = reach.ceil() as usize;
     // Only the centres' bounding box widened by the reach can hold a cell
-    // within reach: the transform runs there (a zone costs the zone).
-    let Some((r0, r1, c0, c1)) = centres.bounding_box(|&b| b) else {
-        return Grid::new(free.width(), free.height(), false);
+    // within reach (a zone costs the zone), and only `within` is asked.
+    let Some(reached) = centres.bounding_box(|&b| b).map(|b| free.widen(b, k)) else {
+        return Grid::new(w, h, false);
     };
-    let window = free.widen((r0, r1, c0, c1), reach.ceil() as usize);
+    let meet = |a: Window, b: Window| (a.0.max(b.0), a.1.min(b.1), a.2.max(b.2), a.3.min(b.3));
+    let window = within.map_or(reached, |within| meet(reached, within));
+    if window.0 >= window.1 || window.2 >= window.3 {
+        return Grid::new(w, h, false);
+    }
     // An integer d² is at most reach² when at most its floor.
     let limit = (reach * reach).floor() as u64;
-    if window == (0, free.height(), 0, free.width()) {
+    if window == (0, h, 0, w) {
         let near = center_within_sq(centres, limit);
         return free.zip_map(&near, |&f, &n| f && n);
     }
-    let near = center_within_sq(&centres.crop(window), limit);
-    let mut out = Grid::new(free.width(), free.height(), false);
-    out.paste(
-        Cell::new(window.0, window.2),
-        &free.crop(window).zip_map(&near, |&f, &n| f && n),
-    );
+    // The centres that can reach the window: those of the window widened
+    // (all of them when it is the whole of `reached`).
+    let around = meet(free.widen(window, k), reached);
+    let near = center_within_sq(&centres.crop(around), limit);
+    let (dr, dc) = (window.0 - around.0, window.2 - around.2);
+    let part = free.crop(window);
+    let part = Grid::from_fn(part.width(), part.height(), |c| {
+        part[c] && near[Cell::new(c.row + dr, c.col + dc)]
+    });
+    let mut out = Grid::new(w, h, false);
+    out.paste(Cell::new(window.0, window.2), &part);
     out
 }
 
@@ -314,7 +392,14 @@ mod tests {
                     dr * dr + dc * dc <= reach * reach
                 })
             });
-            proptest::prop_assert_eq!(coverable_cells(&free, &centres, tool), brute);
+            proptest::prop_assert_eq!(coverable_cells(&free, &centres, tool), brute.clone());
+            // Inside a window only: the same cells there, none outside.
+            let (r0, c0) = (seed as usize % 17, seed as usize / 17 % 23);
+            let within = (r0, (r0 + 6).min(17), c0, (c0 + 9).min(23));
+            let inside = Grid::from_fn(23, 17, |c: Cell| {
+                brute[c] && (within.0..within.1).contains(&c.row) && (within.2..within.3).contains(&c.col)
+            });
+            proptest::prop_assert_eq!(coverable_cells_within(&free, &centres, tool, Some(within)), inside);
         }
     }
 

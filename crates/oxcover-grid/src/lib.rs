@@ -60,7 +60,7 @@ pub mod traverse;
 pub use admissible::{TOLERANCE_CELLS, admissible, clearance};
 pub use coarse::CoarseGrid;
 pub use components::{Components, components4, components4_by_class, reachable};
-pub use coverable::{Coverability, DiscRobot, coverable_cells};
+pub use coverable::{Coverability, DiscRobot, Window, coverable_cells, coverable_cells_within};
 pub use error::{Error, Result};
 pub use frame::MapFrame;
 pub use grid::{Cell, Dir4, Dir8, Grid};

@@ -33,7 +33,7 @@ pub use input::{PlanOutput, PlannerInput, Transit};
 use oxcover_distance::{Wavefront, cidt};
 use oxcover_grid::{
     Cell, CoarseGrid, Coverability, DiscRobot, Grid, MapFrame, OccupancyGrid, Point,
-    TOLERANCE_CELLS, admissible, components4, coverable_cells, reachable,
+    TOLERANCE_CELLS, Window, admissible, components4, coverable_cells, reachable,
 };
 
 use crate::boundary_pass::{
@@ -116,11 +116,36 @@ impl CoverageProblem {
     /// [`Error::Map`]: no free or admissible cell, a start outside the map or
     /// not admissible (the grid crate's messages).
     pub fn new(map: &OccupancyGrid, robot: DiscRobot, start: Start) -> Result<Self> {
+        Self::new_within(map, robot, start, None)
+    }
+
+    /// [`CoverageProblem::new`] with coverable cells only inside `within`
+    /// (rows `r0..r1`, columns `c0..c1`; [`Coverability::new_within`]): for
+    /// a target known to lie there, the rest of the map is still driven
+    /// through but not looked at for coverage. `None`: everywhere.
+    ///
+    /// # Errors
+    /// As [`CoverageProblem::new`].
+    pub fn new_within(
+        map: &OccupancyGrid,
+        robot: DiscRobot,
+        start: Start,
+        within: Option<Window>,
+    ) -> Result<Self> {
         let (cells, start_point) = match start {
-            Start::First => (Coverability::new(map, robot, None)?, None),
-            Start::At(p) => (Coverability::new(map, robot, Some(p))?, Some(p)),
-            Start::Cell(c) => (Coverability::with_start_cell(map, robot, c)?, None),
-            Start::LargestRegion => (Coverability::in_largest_region(map, robot)?, None),
+            Start::First => (Coverability::new_within(map, robot, None, within)?, None),
+            Start::At(p) => (
+                Coverability::new_within(map, robot, Some(p), within)?,
+                Some(p),
+            ),
+            Start::Cell(c) => (
+                Coverability::with_start_cell_within(map, robot, c, within)?,
+                None,
+            ),
+            Start::LargestRegion => (
+                Coverability::in_largest_region_within(map, robot, within)?,
+                None,
+            ),
         };
         let frame = *map.frame();
         let coarse = CoarseGrid::new(&cells.reachable, coarse_block(&robot, frame.resolution()));

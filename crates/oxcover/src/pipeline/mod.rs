@@ -69,15 +69,22 @@ pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
     let targets = &request.targets;
     let (work_map, blocked_cells) = targets.blocked_map(map)?;
     keep_out_spares_start(map, &work_map, request)?;
+    // Zones or a spot hold the required cells to a window: coverable
+    // cells are looked for there only (unless the clearance's report asks
+    // for the map's).
+    let within = targets
+        .extent(&work_map)
+        .filter(|_| request.clearance <= 0.0);
     // The segmentation needs only the map: found while the problem is
     // built (same result whatever the thread count).
     let (problem, rooms) = rayon::join(
-        || request.problem(&work_map),
+        || request.problem_within(&work_map, within),
         || request.rooms.then(|| PlanRooms::new(&work_map, request)),
     );
     let problem = problem?;
     let lost = clearance_lost(&work_map, &problem, request)?;
-    let mut outcome = plan_problem(map, problem, rooms, blocked_cells, request, t0)?;
+    let maps = (map, &*work_map, within.is_some());
+    let mut outcome = plan_problem(maps, problem, rooms, blocked_cells, request, t0)?;
     outcome.clearance_lost_cells = lost;
     Ok(outcome)
 }
@@ -103,9 +110,11 @@ fn clearance_lost(
     Ok(Some(lost))
 }
 
-/// Plans `problem` (built on the map with keep-out applied) for `request`.
+/// Plans `problem` (built on the map with keep-out applied, `work_map`;
+/// coverable cells only in the target's window where `windowed`) for
+/// `request`.
 fn plan_problem(
-    map: &OccupancyGrid,
+    (map, work_map, windowed): (&OccupancyGrid, &OccupancyGrid, bool),
     problem: CoverageProblem,
     rooms: Option<PlanRooms<'_>>,
     blocked_cells: usize,
@@ -114,9 +123,13 @@ fn plan_problem(
 ) -> Result<PlanOutcome> {
     let targets = &request.targets;
     if let Some(target) = targets.required(map, problem.cells())? {
-        let whole = problem.clone();
+        // The whole map's problem, should the target's plan be compared
+        // with the map's (built again where its coverable cells were found
+        // in the target's window only).
+        let kept = (!windowed).then(|| problem.clone());
+        let whole = || kept.map_or_else(|| request.problem(work_map), Ok);
         let problem = problem.with_required(&target.required)?;
-        let mut outcome = plan_target(&problem, &whole, &target, rooms.as_ref(), request, t0)?;
+        let mut outcome = plan_target(&problem, whole, &target, rooms.as_ref(), request, t0)?;
         // Resuming: the interrupted plan's remainder, where it is faster.
         if let Some(rest) = remainder::continued(map, &problem, request, t0)?
             && rest.evaluation.metrics.est_time_s < outcome.evaluation.metrics.est_time_s
@@ -206,7 +219,7 @@ fn keep_out_spares_start(
 /// of the three is kept.
 fn plan_target(
     problem: &CoverageProblem,
-    whole: &CoverageProblem,
+    whole: impl FnOnce() -> Result<CoverageProblem>,
     target: &TargetCells,
     rooms: Option<&PlanRooms<'_>>,
     request: &PlanRequest,
@@ -236,7 +249,7 @@ fn plan_target(
     }
     let rooms = rooms.map(PlanRooms::whole);
     let by_map = plan_map(problem, rooms.as_deref(), request, t0)?;
-    let map_plan = plan_map(whole, rooms.as_deref(), request, t0)?;
+    let map_plan = plan_map(&whole()?, rooms.as_deref(), request, t0)?;
     let part = remainder::covering_part(problem, request, &map_plan, false, t0)?;
     let time = |o: &PlanOutcome| o.evaluation.metrics.est_time_s;
     let mut kept = [Some(by_map), part]

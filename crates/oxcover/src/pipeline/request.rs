@@ -269,7 +269,21 @@ impl PlanRequest {
     /// # Errors
     /// Bad radii, clearance or start ([`oxcover_grid::Error`]).
     pub fn problem(&self, map: &OccupancyGrid) -> Result<CoverageProblem> {
-        Ok(CoverageProblem::new(map, self.planning_robot()?, self.start)?.with_time(self.time))
+        self.problem_within(map, None)
+    }
+
+    /// [`PlanRequest::problem`] with coverable cells only inside `within`
+    /// ([`CoverageProblem::new_within`]).
+    ///
+    /// # Errors
+    /// As [`PlanRequest::problem`].
+    pub fn problem_within(
+        &self,
+        map: &OccupancyGrid,
+        within: Option<oxcover_grid::Window>,
+    ) -> Result<CoverageProblem> {
+        let robot = self.planning_robot()?;
+        Ok(CoverageProblem::new_within(map, robot, self.start, within)?.with_time(self.time))
     }
 }
 

@@ -219,3 +219,47 @@ fn a_small_zone_segments_its_neighbourhood() {
             .is_none()
     );
 }
+
+/// A zone's plan is the same whether the coverable cells were looked for
+/// in the zone's window only or on the whole map: a small zone, and one
+/// over the whole map (whose plan is compared with the map's, built again
+/// for it).
+#[test]
+fn a_zone_plans_the_same_with_coverable_cells_in_its_window() {
+    use crate::targets::{Areas, Targets};
+    let map = oxcover_grid::OccupancyGrid::new(
+        rectangles(120, 90, 12, 9, 3).cells().clone(),
+        0.05,
+        Point::origin(),
+    );
+    for (x0, x1, y0, y1) in [(1.5, 3.0, 1.5, 3.0), (-1.0, 7.0, -1.0, 5.0)] {
+        let zone = geo::Polygon::new(
+            geo::LineString::from(vec![(x0, y0), (x1, y0), (x1, y1), (x0, y1), (x0, y0)]),
+            Vec::new(),
+        );
+        let request = PlanRequest::new("lanes", 0.05)
+            .unwrap()
+            .robot(DiscRobot::new(0.1, 0.1).unwrap())
+            .targets(Targets {
+                zones: Some(Areas {
+                    polygons: vec![zone],
+                    lines: Vec::new(),
+                }),
+                ..Targets::default()
+            });
+        let within = request.targets.extent(&map);
+        assert!(within.is_some());
+        let plan = |within| {
+            let problem = request.problem_within(&map, within).unwrap();
+            let rooms = Some(rooms::PlanRooms::new(&map, &request));
+            let maps = (&map, &map, within.is_some());
+            plan_problem(maps, problem, rooms, 0, &request, Instant::now()).unwrap()
+        };
+        let (windowed, everywhere) = (plan(within), plan(None));
+        assert_eq!(windowed.points, everywhere.points);
+        assert_eq!(
+            windowed.evaluation.metrics.coverable_cells,
+            everywhere.evaluation.metrics.coverable_cells
+        );
+    }
+}
