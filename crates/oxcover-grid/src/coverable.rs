@@ -307,13 +307,17 @@ pub fn coverable_cells_within(
     // (all of them when it is the whole of `reached`).
     let around = meet(free.widen(window, k), reached);
     let near = center_within_sq(&centres.crop(around), limit);
-    let (dr, dc) = (window.0 - around.0, window.2 - around.2);
-    let part = free.crop(window);
-    let part = Grid::from_fn(part.width(), part.height(), |c| {
-        part[c] && near[Cell::new(c.row + dr, c.col + dc)]
-    });
+    let near = if around == window {
+        near
+    } else {
+        let (r0, c0) = (window.0 - around.0, window.2 - around.2);
+        near.crop((r0, r0 + window.1 - window.0, c0, c0 + window.3 - window.2))
+    };
     let mut out = Grid::new(w, h, false);
-    out.paste(Cell::new(window.0, window.2), &part);
+    out.paste(
+        Cell::new(window.0, window.2),
+        &free.crop(window).zip_map(&near, |&f, &n| f && n),
+    );
     out
 }
 

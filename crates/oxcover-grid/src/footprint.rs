@@ -82,6 +82,57 @@ pub fn covered_cells(frame: &MapFrame, points: &[Point], tool_radius: f64) -> Gr
     mask
 }
 
+/// The cells covered by a tool of `tool_radius` metres driven along each
+/// of `pieces` (polylines, each marked as [`mark_covered`] marks it; no
+/// move between them). Long ones are marked in two halves side by side
+/// (split at a waypoint, which leaves the cells as they are: see
+/// [`mark_segments`]) and joined.
+#[must_use]
+pub fn covered_cells_of(frame: &MapFrame, pieces: &[&[Point]], tool_radius: f64) -> Grid<bool> {
+    let total: usize = pieces.iter().map(|p| p.len()).sum();
+    let blank = || Grid::new(frame.width(), frame.height(), false);
+    if total < SPLIT_WAYPOINTS {
+        let mut mask = blank();
+        for piece in pieces {
+            mark_covered(frame, piece, tool_radius, &mut mask);
+        }
+        return mask;
+    }
+    // The piece holding the middle waypoint, and where in it.
+    let mut i = 0;
+    let mut before = 0;
+    while before + pieces[i].len() <= total / 2 {
+        before += pieces[i].len();
+        i += 1;
+    }
+    let k = total / 2 - before;
+    let (mut a, b) = rayon::join(
+        || {
+            let mut mask = blank();
+            for piece in &pieces[..i] {
+                mark_covered(frame, piece, tool_radius, &mut mask);
+            }
+            mark_covered(frame, &pieces[i][..=k], tool_radius, &mut mask);
+            mask
+        },
+        || {
+            let mut mask = blank();
+            mark_segments(frame, &pieces[i][k..], tool_radius, &mut mask);
+            for piece in &pieces[i + 1..] {
+                mark_covered(frame, piece, tool_radius, &mut mask);
+            }
+            mask
+        },
+    );
+    for (x, &y) in a.as_mut_slice().iter_mut().zip(b.as_slice()) {
+        *x |= y;
+    }
+    a
+}
+
+/// Waypoints from which [`covered_cells_of`] marks in two halves.
+const SPLIT_WAYPOINTS: usize = 1_000;
+
 /// Adds the cells covered along `points` to `mask`.
 ///
 /// The same cells as a disc marked round every sample ([`for_each_sample`],
@@ -235,6 +286,27 @@ mod tests {
             mark_covered(&frame, &points, radius, &mut fast);
             mark_covered_reference(&frame, &points, radius, &mut slow);
             prop_assert_eq!(fast, slow);
+        }
+    }
+
+    #[test]
+    fn pieces_marked_in_halves_are_marked_alike() {
+        let frame = MapFrame::new(80, 60, 0.05, Point::new(0.1, -0.2)).with_yaw(0.3);
+        // Pieces of a zigzag, 2,400 waypoints in all, split unevenly.
+        let zigzag: Vec<Point> = (0..2_400)
+            .map(|i| Point::new(0.2 + (i % 37) as f64 * 0.1, 0.1 + (i % 29) as f64 * 0.09))
+            .collect();
+        for cuts in [
+            vec![0, 2_400],
+            vec![0, 700, 1_300, 1_301, 2_400],
+            vec![0, 1_200, 2_400],
+        ] {
+            let pieces: Vec<&[Point]> = cuts.windows(2).map(|c| &zigzag[c[0]..c[1]]).collect();
+            let mut want = Grid::new(80, 60, false);
+            for piece in &pieces {
+                mark_covered(&frame, piece, 0.11, &mut want);
+            }
+            assert_eq!(covered_cells_of(&frame, &pieces, 0.11), want, "{cuts:?}");
         }
     }
 

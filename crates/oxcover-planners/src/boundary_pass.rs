@@ -32,7 +32,7 @@
 //! at almost every anchor) and keeps the faster.
 
 use oxcover_distance::{Wavefront, cidt};
-use oxcover_grid::footprint::{covered_cells, mark_covered, mark_disc, mark_segments};
+use oxcover_grid::footprint::{covered_cells_of, mark_covered, mark_disc};
 use oxcover_grid::{Cell, Coverability, Grid, MapFrame, Point, TOLERANCE_CELLS};
 
 use crate::error::{Error, Result};
@@ -70,7 +70,7 @@ pub fn boundary_pass(
 }
 
 /// [`boundary_pass`] given the cells the plan covers: `covered`, a grid of
-/// `frame`'s size as [`covered_cells`] finds it for the plan's polyline
+/// `frame`'s size as [`oxcover_grid::footprint::covered_cells`] finds it for the plan's polyline
 /// and the problem's tool radius (for a caller that has it already).
 ///
 /// # Errors
@@ -89,32 +89,12 @@ pub fn boundary_pass_covered(
 }
 
 /// The cells a plan's polyline `points` covers for `problem`'s tool, as the
-/// metrics find them ([`covered_cells`]). A long path is marked in two
-/// halves side by side ([`mark_segments`]): the same cells.
+/// metrics find them ([`oxcover_grid::footprint::covered_cells`]; a long path in two halves side
+/// by side, [`covered_cells_of`]).
 #[must_use]
 pub fn covered_by(frame: &MapFrame, problem: &Coverability, points: &[Point]) -> Grid<bool> {
-    let tool = problem.robot.tool_radius;
-    if points.len() < SPLIT_WAYPOINTS {
-        return covered_cells(frame, points, tool);
-    }
-    let k = points.len() / 2;
-    let (mut a, b) = rayon::join(
-        || covered_cells(frame, &points[..=k], tool),
-        || {
-            let mut b = Grid::new(frame.width(), frame.height(), false);
-            mark_segments(frame, &points[k..], tool, &mut b);
-            b
-        },
-    );
-    for (x, &y) in a.as_mut_slice().iter_mut().zip(b.as_slice()) {
-        *x |= y;
-    }
-    a
+    covered_cells_of(frame, &[points], problem.robot.tool_radius)
 }
-
-/// Paths of at least this many waypoints are marked in two halves by
-/// [`covered_by`].
-const SPLIT_WAYPOINTS: usize = 1_000;
 
 /// The same cells covered by a better tour: the anchors are ordered by an
 /// open tour over their straight-line distances (nearest neighbour, then

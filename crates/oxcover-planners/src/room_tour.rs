@@ -19,7 +19,7 @@ use rayon::prelude::*;
 use oxcover_decomp::merge_small_regions;
 use oxcover_distance::{Wavefront, cidt};
 use oxcover_grid::grid::nearest_first;
-use oxcover_grid::{Cell, Components, Grid, components4_by_class};
+use oxcover_grid::{Cell, Components, Dir4, Grid, components4_by_class};
 
 use crate::error::{Error, Result};
 use crate::problem::CoverageProblem;
@@ -380,7 +380,20 @@ pub fn unit_exits(
 /// copies of it (building one costs a pass over the map).
 #[must_use]
 pub fn unit_exits_with(wave: &Wavefront, units: &RoomUnits, order: &[u32]) -> Vec<Option<Cell>> {
-    let cells_of = units.cells_by_unit();
+    // Each unit's edge cells (a 4-neighbour in another unit or none): a
+    // route out of a unit leaves it from one, so searching from them finds
+    // the same distances outside it as from all its cells.
+    let labels = &units.labels;
+    let edge = |c: Cell| {
+        Dir4::ALL
+            .into_iter()
+            .any(|d| labels.step(c, d).is_some_and(|n| labels[n] != labels[c]))
+    };
+    let cells_of: Vec<Vec<Cell>> = units
+        .cells_by_unit()
+        .into_iter()
+        .map(|cells| cells.into_iter().filter(|&c| edge(c)).collect())
+        .collect();
     // Each step of the order on its own (in parallel, each search with its
     // own copy of the wavefront; in the order's order whatever the thread
     // count).

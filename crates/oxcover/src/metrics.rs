@@ -19,7 +19,7 @@
 //! only when it lies at least resolution/4 from the last kept one; the final
 //! waypoint always ends the merged polyline.
 
-use oxcover_grid::footprint::{for_each_sample, mark_covered};
+use oxcover_grid::footprint::{covered_cells_of, for_each_sample, mark_covered};
 use oxcover_grid::math::{heading, wrap_angle};
 use oxcover_grid::{Coverability, DiscRobot, Grid, MapFrame, OccupancyGrid, Point};
 use oxcover_planners::TimeModel;
@@ -202,11 +202,8 @@ pub(crate) fn evaluate_covered(
 /// between them is counted).
 #[must_use]
 pub fn coverage_of(frame: &MapFrame, problem: &Coverability, pieces: &[Vec<Point>]) -> f64 {
-    let tool = problem.robot.tool_radius;
-    let mut covered = Grid::new(frame.width(), frame.height(), false);
-    for piece in pieces {
-        mark_covered(frame, piece, tool, &mut covered);
-    }
+    let pieces: Vec<&[Point]> = pieces.iter().map(Vec::as_slice).collect();
+    let covered = covered_cells_of(frame, &pieces, problem.robot.tool_radius);
     covered_fraction(problem, &covered)
 }
 

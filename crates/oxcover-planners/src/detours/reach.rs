@@ -11,6 +11,7 @@
 use oxcover_grid::math::{fast_ceil, fast_floor};
 use oxcover_grid::traverse::{GridPoint, cell_center, segment_distance, segment_distance_sq};
 use oxcover_grid::{Cell, Grid, Vector};
+use rayon::prelude::*;
 
 use super::Detours;
 
@@ -54,9 +55,21 @@ pub(super) fn for_stroke_cells(
     r: f64,
     w: usize,
     h: usize,
+    f: impl FnMut(usize, Cell),
+) {
+    for_stroke_cells_in(a, b, r, (w, h), 0..h, f);
+}
+
+/// [`for_stroke_cells`] in the rows `rows` only.
+pub(super) fn for_stroke_cells_in(
+    a: GridPoint,
+    b: GridPoint,
+    r: f64,
+    (w, h): (usize, usize),
+    rows: std::ops::Range<usize>,
     mut f: impl FnMut(usize, Cell),
 ) {
-    for span in stroke_spans(a, b, r, r, (w, h)) {
+    for span in stroke_spans(a, b, (r, r), (w, h), rows) {
         let base = span.row * w;
         let cols = (span.first..span.sure.start).chain(span.sure.end..=span.last);
         for col in cols {
@@ -86,7 +99,7 @@ pub(super) fn stroke_until(
     want: impl Fn(usize) -> bool,
     mut stop: impl FnMut(usize, Cell, bool) -> bool,
 ) -> bool {
-    for span in stroke_spans(a, b, r, inner, (w, h)) {
+    for span in stroke_spans(a, b, (r, inner), (w, h), 0..h) {
         let base = span.row * w;
         for col in span.first..=span.last {
             if !want(base + col) {
@@ -121,13 +134,14 @@ struct StrokeSpan {
 /// between, a hair wider), so that no cell outside it is looked at; each
 /// with the columns a sample surely reaches within `inner` (at most `r`),
 /// an interval per row rather than a test per cell ([`SURE_MARGIN`] keeps
-/// the interval's own rounding on the safe side).
+/// the interval's own rounding on the safe side); only the rows in
+/// `within`.
 fn stroke_spans(
     a: GridPoint,
     b: GridPoint,
-    r: f64,
-    inner: f64,
+    (r, inner): (f64, f64),
     (w, h): (usize, usize),
+    within: std::ops::Range<usize>,
 ) -> impl Iterator<Item = StrokeSpan> {
     debug_assert!(inner <= r);
     // A hair wider than `r`: the exact tests decide.
@@ -141,7 +155,7 @@ fn stroke_spans(
     let rows = if row1 < 0.0 {
         1..1
     } else {
-        row0..(row1 as usize).min(h.saturating_sub(1)) + 1
+        row0.max(within.start)..((row1 as usize).min(h.saturating_sub(1)) + 1).min(within.end)
     };
     let capsule = Capsule::new(a, b);
     rows.filter_map(move |row| {
@@ -283,14 +297,53 @@ impl Capsule {
 
 /// How many segments of `points` reach each cell (a contract sample
 /// within `d.reach` of its centre).
+///
+/// Long paths are counted in bands of [`COUNT_ROWS`] rows in parallel,
+/// each band adding the strokes of the segments near its rows to its own
+/// cells (every cell gets the same additions, whatever the thread count).
 pub(crate) fn reach_counts(points: &[GridPoint], d: &Detours<'_>) -> Grid<u16> {
-    let mut count = Grid::new(d.plannable.width(), d.plannable.height(), 0);
-    let mut counts = Counts::whole(&mut count);
-    for s in points.windows(2) {
-        counts.add_stroke(s[0], s[1], d.reach);
+    let (w, h) = (d.plannable.width(), d.plannable.height());
+    let mut count = Grid::new(w, h, 0);
+    if points.len() < PARALLEL_COUNT || w == 0 {
+        let mut counts = Counts::whole(&mut count);
+        for s in points.windows(2) {
+            counts.add_stroke(s[0], s[1], d.reach);
+        }
+        return count;
     }
+    // Each segment's rows (a cell more than its capsule's either way).
+    let spans: Vec<(f64, f64)> = points
+        .windows(2)
+        .map(|s| {
+            let (lo, hi) = (s[0].y.min(s[1].y), s[0].y.max(s[1].y));
+            (lo - d.reach - 1.0, hi + d.reach + 1.0)
+        })
+        .collect();
+    count
+        .as_mut_slice()
+        .par_chunks_mut(w * COUNT_ROWS)
+        .enumerate()
+        .for_each(|(k, band)| {
+            let rows = k * COUNT_ROWS..k * COUNT_ROWS + band.len() / w;
+            let (top, bottom) = (rows.start as f64, rows.end as f64);
+            for (s, &(lo, hi)) in points.windows(2).zip(&spans) {
+                if hi < top || lo > bottom {
+                    continue;
+                }
+                let offset = rows.start * w;
+                for_stroke_cells_in(s[0], s[1], d.reach, (w, h), rows.clone(), |i, _| {
+                    band[i - offset] = band[i - offset].saturating_add(1);
+                });
+            }
+        });
     count
 }
+
+/// Waypoints from which [`reach_counts`] counts in bands in parallel.
+const PARALLEL_COUNT: usize = 256;
+
+/// Rows per band of [`reach_counts`].
+const COUNT_ROWS: usize = 64;
 
 /// A band of whole rows of a reach count grid: all of it, or the rows one
 /// strip of a parallel [`super::tighten_from`] round may change. Indexed by the

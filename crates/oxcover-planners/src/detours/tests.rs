@@ -558,3 +558,44 @@ fn heading_change_is_the_angle_between() {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 16, ..ProptestConfig::default() })]
+
+    /// A long path's reach counts, found in bands of rows in parallel, are
+    /// those its segments' strokes add one by one, on any thread count.
+    #[test]
+    fn banded_reach_counts_are_the_strokes(seed in 0u64..1_000, reach in 0.5..9.0f64) {
+        let (w, h) = (90usize, 300usize);
+        let mut rng = seed;
+        let mut next = |n: f64| {
+            rng = rng.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            (rng >> 11) as f64 / (1u64 << 53) as f64 * n
+        };
+        // A random walk folded back into the grid and 10 cells round it.
+        let fold = |v: f64, n: usize| (v + 10.0).rem_euclid(n as f64 + 20.0) - 10.0;
+        let mut p = GridPoint::new(next(w as f64), next(h as f64));
+        let mut path = vec![p];
+        for _ in 0..400 {
+            let step = Vector::new(next(40.0) - 20.0, next(40.0) - 20.0);
+            p = GridPoint::new(fold(p.x + step.x, w), fold(p.y + step.y, h));
+            path.push(p);
+        }
+        prop_assert!(path.iter().filter(|q| q.x > 0.0 && q.x < w as f64 && q.y > 0.0 && q.y < h as f64).count() > 200);
+        let plannable = Grid::new(w, h, true);
+        let mut d = reach_one(&plannable, &plannable, 2.0);
+        d.reach = reach;
+        let mut want = Grid::new(w, h, 0u16);
+        for s in path.windows(2) {
+            for_stroke_cells(s[0], s[1], reach, w, h, |i, _| want.as_mut_slice()[i] += 1);
+        }
+        for threads in [1, 3] {
+            let got = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("pool")
+                .install(|| reach_counts(&path, &d));
+            prop_assert!(got == want, "{} threads", threads);
+        }
+    }
+}

@@ -160,8 +160,11 @@ pub(super) fn plan_rooms(
 ) -> Result<PlanOutcome> {
     let order = order.unwrap_or_else(|| room_order(problem, units));
     let mut wave = problem.transit_wavefront();
-    let exits = unit_exits_with(&wave, units, &order);
-    let claims = unit_claims(problem, units);
+    // (Side by side: neither needs the other.)
+    let (exits, claims) = rayon::join(
+        || unit_exits_with(&wave, units, &order),
+        || unit_claims(problem, units),
+    );
     let bounds = units.bounds();
     let plan_cells = problem.plannable().count_true();
     let mut points: Vec<Point> = Vec::new();
