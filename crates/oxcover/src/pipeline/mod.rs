@@ -24,6 +24,7 @@ mod rooms;
 #[cfg(test)]
 mod tests;
 
+use std::borrow::Cow;
 use std::time::Instant;
 
 use oxcover_decomp::Rooms;
@@ -228,9 +229,9 @@ fn plan_target(
     let region = target_region(problem, &target.required);
     let (w, h) = (region.width(), region.height());
     let labels = match (rooms, &target.room_labels) {
-        (Some(rooms), _) => rooms.rooms.labels.clone(),
-        (None, Some(chosen)) => chosen.clone(),
-        (None, None) => Grid::new(w, h, 1),
+        (Some(rooms), _) => Cow::Borrowed(&rooms.rooms.labels),
+        (None, Some(chosen)) => Cow::Borrowed(chosen),
+        (None, None) => Cow::Owned(Grid::new(w, h, 1)),
     };
     let units = RoomUnits::new(&region, &labels, min_unit_cells(problem));
     let given = match (&request.targets.rooms_only, &target.room_labels) {

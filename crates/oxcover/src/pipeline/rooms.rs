@@ -7,6 +7,7 @@
 use std::time::Instant;
 
 use oxcover_decomp::{RoomParams, Rooms, voronoi};
+use oxcover_grid::footprint::covered_cells_of;
 use oxcover_grid::{Cell, Grid, OccupancyGrid, Point};
 use oxcover_planners::{
     BoundaryRoute, CoverageProblem, RoomUnits, room_order, unit_claims, unit_exits_with,
@@ -158,12 +159,25 @@ pub(super) fn plan_rooms(
     request: &PlanRequest,
     t0: Instant,
 ) -> Result<PlanOutcome> {
-    let order = order.unwrap_or_else(|| room_order(problem, units));
-    let mut wave = problem.transit_wavefront();
-    // (Side by side: neither needs the other.)
-    let (exits, claims) = rayon::join(
-        || unit_exits_with(&wave, units, &order),
-        || unit_claims(problem, units),
+    let (order, mut wave) = rayon::join(
+        || order.unwrap_or_else(|| room_order(problem, units)),
+        || problem.transit_wavefront(),
+    );
+    let mut here = problem.start_cell();
+    // The way from the start to the first unit, when it lies outside it.
+    let first = order.first().copied().filter(|&u| units.labels[here] != u);
+    // (Side by side: none needs another.)
+    let ((exits, claims), mut first_transit) = rayon::join(
+        || {
+            rayon::join(
+                || unit_exits_with(&wave, units, &order),
+                || unit_claims(problem, units),
+            )
+        },
+        || {
+            first
+                .map(|u| problem.transit_reusing(&mut wave.clone(), here, |c| units.labels[c] == u))
+        },
     );
     let bounds = units.bounds();
     let plan_cells = problem.plannable().count_true();
@@ -172,7 +186,6 @@ pub(super) fn plan_rooms(
     let mut raws = Vec::new();
     let mut boundary: Option<BoundaryRoute> = None;
     let mut in_pass: Vec<bool> = Vec::new();
-    let mut here = problem.start_cell();
     let mut stretches = Vec::with_capacity(order.len());
     for (i, &u) in order.iter().enumerate() {
         // The start may lie outside every unit (a coverage target).
@@ -180,7 +193,10 @@ pub(super) fn plan_rooms(
         let (entry, prefix) = if !transit {
             (here, start_prefix(problem))
         } else {
-            let t = problem.transit_reusing(&mut wave, here, |c| units.labels[c] == u)?;
+            let t = match first_transit.take() {
+                Some(t) => t?,
+                None => problem.transit_reusing(&mut wave, here, |c| units.labels[c] == u)?,
+            };
             let entry = t.cells.last().copied().unwrap_or(here);
             if i == 0 {
                 cells.push(here);
@@ -229,14 +245,21 @@ pub(super) fn plan_rooms(
         }
         here = region.end;
     }
-    let (points, stretches, covered, in_pass) =
-        tighten_plan(problem, Some(units), points, stretches, in_pass);
+    // The cells the units' own paths cover (before their boundary
+    // passes), found while the whole path is tightened.
+    let ((points, stretches, covered, in_pass), raw_covered) = rayon::join(
+        || tighten_plan(problem, Some(units), points, stretches, in_pass),
+        || {
+            let pieces: Vec<&[Point]> = raws.iter().map(Vec::as_slice).collect();
+            covered_cells_of(problem.frame(), &pieces, problem.robot().tool_radius)
+        },
+    );
     let boundary_length_m = pass_length(&points, &in_pass);
     let plan_ms = t0.elapsed().as_secs_f64() * 1e3;
-    // Each room's own coverage is on its room's grid: the map's is found
-    // afresh.
+    // (Each room's own coverage is on its room's grid: the map's is found
+    // afresh, above.)
     let known = KnownCoverage {
-        raws: None,
+        raws: Some(raw_covered),
         path: covered,
     };
     finish(
