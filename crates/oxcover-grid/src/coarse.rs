@@ -43,30 +43,28 @@ impl CoarseGrid {
         let (cw, ch) = (fw.div_ceil(k), fh.div_ceil(k));
         // Each block's representative, and whether all its cells are
         // plannable (two such blocks side by side are linked: no search).
+        // The cells of a block nearest its nominal centre first (doubled
+        // coordinates keep the centre integral; ties in row-major order):
+        // the first plannable one met is the representative.
+        let mut order: Vec<(usize, usize)> =
+            (0..k).flat_map(|r| (0..k).map(move |c| (r, c))).collect();
+        order.sort_by_key(|&(r, c)| {
+            let (dr, dc) = ((2 * r).abs_diff(k - 1), (2 * c).abs_diff(k - 1));
+            (dr * dr + dc * dc, r, c)
+        });
         let blocks = Grid::par_from_fn(cw, ch, |b| {
-            let mut best: Option<(usize, Cell)> = None;
-            let mut open = 0;
-            // Doubled coordinates keep the nominal centre integral.
-            let cr = 2 * b.row * k + k - 1;
-            let cc = 2 * b.col * k + k - 1;
-            for r in b.row * k..((b.row + 1) * k).min(fh) {
-                for c in b.col * k..((b.col + 1) * k).min(fw) {
-                    let cell = Cell::new(r, c);
-                    if !plannable[cell] {
-                        continue;
-                    }
-                    open += 1;
-                    let dr = (2 * r).abs_diff(cr);
-                    let dc = (2 * c).abs_diff(cc);
-                    let d = dr * dr + dc * dc;
-                    if best.is_none_or(|(bd, _)| d < bd) {
-                        best = Some((d, cell));
-                    }
-                }
+            let (r0, c0) = (b.row * k, b.col * k);
+            let (rows, cols) = (r0..(r0 + k).min(fh), c0..(c0 + k).min(fw));
+            let row = |r: usize| &plannable.row(r)[cols.clone()];
+            let full = rows.clone().all(|r| row(r).iter().all(|&p| p));
+            if !full && !rows.clone().any(|r| row(r).contains(&true)) {
+                return (None, false);
             }
-            let rows = (b.row * k..((b.row + 1) * k).min(fh)).len();
-            let cols = (b.col * k..((b.col + 1) * k).min(fw)).len();
-            (best.map(|(_, c)| c), open == rows * cols)
+            let rep = order
+                .iter()
+                .map(|&(r, c)| Cell::new(r0 + r, c0 + c))
+                .find(|c| c.row < fh && c.col < fw && plannable[*c]);
+            (rep, full)
         });
         let reps = blocks.map(|b| b.0);
         let mut grid = Self {
@@ -424,6 +422,29 @@ mod tests {
 
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+        /// Each block's representative is its plannable cell nearest the
+        /// block's nominal centre (ties: row-major first), found by a scan
+        /// of the block; clipped blocks at the edges included.
+        #[test]
+        fn representatives_are_the_nearest(seed in 0u64..1000, density in 0.0f64..0.9, block in 1usize..9) {
+            let free = crate::random::random_density(37, 23, density, seed).free_mask();
+            let g = CoarseGrid::new(&free, block);
+            for b in g.representatives().cells() {
+                let (rows, cols) = g.block_cells(b);
+                let (cr, cc) = (2 * b.row * block + block - 1, 2 * b.col * block + block - 1);
+                let mut best: Option<(usize, Cell)> = None;
+                for r in rows {
+                    for c in cols.clone() {
+                        let d = (2 * r).abs_diff(cr).pow(2) + (2 * c).abs_diff(cc).pow(2);
+                        if free[Cell::new(r, c)] && best.is_none_or(|(bd, _)| d < bd) {
+                            best = Some((d, Cell::new(r, c)));
+                        }
+                    }
+                }
+                proptest::prop_assert_eq!(g.representative(b), best.map(|(_, c)| c), "{:?}", b);
+            }
+        }
+
         /// Row masks find a link exactly where the window search finds a
         /// path, windows of up to 64 columns and wider (the search itself).
         #[test]
