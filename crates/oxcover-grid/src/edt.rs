@@ -28,8 +28,9 @@
 //! Where only "is a source within `limit`?" is asked (admissibility, the
 //! coverable cells, the lane mask), [`boundary_within_sq4`] and
 //! [`center_within_sq`] answer it exactly without the distances beyond:
-//! the column pass stops at the limit, and the row pass takes the least
-//! `G(q) + h(x − q)` over the few columns `q` within reach instead of an
+//! the column pass counts rows only up to the limit, and the row pass
+//! compares those counts, column offset by column offset, with the most
+//! each offset allows, over the few columns within reach instead of an
 //! envelope (our addition, not in the paper; beyond 32 cells along an
 //! axis the full transform is thresholded).
 //!
@@ -90,9 +91,11 @@ const WINDOW_MAX: i64 = 32;
 /// Whether the distance (`kernel`'s) to the nearest source is at most
 /// `limit`, cell by cell. A source within the limit is at most `K` cells
 /// away along either axis, `K` the largest `k` with `h(k) ≤ limit`, so the
-/// column pass need only tell distances up to `K` rows, and each cell of
-/// the row pass the least `G(q) + h(x − q)` over the `2K + 1` columns
-/// round it instead of a line's whole envelope (the same sum of a column
+/// column pass need only count rows up to `K` (small integers, capped),
+/// and each cell of the row pass look at the `2K + 1` columns round it
+/// instead of a line's whole envelope: within the limit where, for some
+/// column `q`, `h(rows) + h(x − q) ≤ limit`, that is where `rows` is at
+/// most the largest count `q`'s offset allows (the same sum of a column
 /// and a row term as [`transform`]'s, over fewer columns: where the
 /// nearest source lies within the limit, it lies among them).
 fn within(sources: &Grid<bool>, outside: bool, kernel: Kernel, limit: u64) -> Grid<bool> {
@@ -108,45 +111,53 @@ fn within(sources: &Grid<bool>, outside: bool, kernel: Kernel, limit: u64) -> Gr
         return Grid::new(w, hgt, false);
     }
     let src = sources.as_slice();
-    // `h` as far as `limit`, `u32::MAX` beyond (or with no source).
-    let stripes = column_stripes(src, (w, hgt), outside, u32::MAX, |k| {
-        let v = kernel.h(k);
-        if v <= limit { v as u32 } else { u32::MAX }
-    });
-    // `h(j − K)` for the window's offsets `j` in `0..=2K`.
-    let terms: Vec<u64> = (-reach..=reach).map(|k| kernel.h(k)).collect();
+    // Rows to the nearest source in the column, `K + 1` where none lies
+    // within `K` rows (or none at all).
+    let cap = reach as u16 + 1;
+    let stripes = capped_stripes(src, (w, hgt), outside, cap);
+    // For each offset `j` in `0..=2K` of the window (column `x + j − K`),
+    // the most rows `d` away a source there may lie: the largest `d` with
+    // `h(d) + h(j − K) ≤ limit` (offsets whose `h` alone is beyond the
+    // limit are left out).
+    let most: Vec<(usize, u16)> = (-reach..=reach)
+        .enumerate()
+        .filter_map(|(j, k)| {
+            let t = kernel.h(k);
+            (t <= limit).then(|| {
+                let mut d = 0;
+                while d < reach && kernel.h(d + 1) + t <= limit {
+                    d += 1;
+                }
+                (j, d as u16)
+            })
+        })
+        .collect();
     let pad = reach as usize + 1;
     let mut out = vec![false; w * hgt];
     out.par_chunks_mut(w * ROWS).enumerate().for_each_init(
         || {
             // Beyond the grid: the frame of outside sources, then nothing.
-            let mut line = vec![u32::MAX; w + 2 * pad];
+            let mut line = vec![cap; w + 2 * pad];
             if outside {
                 line[pad - 1] = 0;
                 line[pad + w] = 0;
             }
-            (line, Vec::new())
+            line
         },
-        |(line, next), (block, out)| {
+        |line, (block, out)| {
             for (i, out) in out.chunks_mut(w).enumerate() {
                 let r = block * ROWS + i;
                 row_of(&stripes, w, r, &mut line[pad..pad + w]);
-                // Most cells have no source within the window at all:
-                // the nearest finite value ahead tells (`next`, an index
-                // into `line`, found walking back from the end).
-                next.clear();
-                next.resize(line.len() + 1, usize::MAX);
-                for i in (0..line.len()).rev() {
-                    next[i] = if line[i] == u32::MAX { next[i + 1] } else { i };
+                // (A row with no source within reach at all: none.)
+                if line.iter().all(|&d| d == cap) {
+                    continue;
                 }
-                for (x, o) in out.iter_mut().enumerate() {
-                    let window = x + 1..x + 2 * pad;
-                    *o = next[window.start] < window.end
-                        && (line[x + pad] == 0
-                            || line[window]
-                                .iter()
-                                .zip(&terms)
-                                .any(|(&g, &t)| u64::from(g) + t <= limit));
+                // Offset by offset over the whole row: compares of small
+                // integers that vectorise.
+                for &(j, most) in &most {
+                    for (o, &d) in out.iter_mut().zip(&line[j + 1..j + 1 + w]) {
+                        *o |= d <= most;
+                    }
                 }
             }
         },
@@ -227,6 +238,46 @@ fn column_stripes<V: Copy + Ord + Send + Sync>(
         .map(|k| {
             let cols = k * STRIPE..((k + 1) * STRIPE).min(w);
             column_pass(src, (w, hgt), cols, outside, (none, &h))
+        })
+        .collect()
+}
+
+/// The column pass of [`within`] in stripes of [`STRIPE`] columns side by
+/// side (row-major within a stripe): the rows from each cell to the
+/// nearest source in its column, `cap` where none lies within `cap − 1`
+/// rows; with `outside`, the rows above and below the grid are sources.
+/// Row by row down, then up, every column of the stripe at once.
+fn capped_stripes(
+    src: &[bool],
+    (w, hgt): (usize, usize),
+    outside: bool,
+    cap: u16,
+) -> Vec<Vec<u16>> {
+    let edge = if outside { 0 } else { cap };
+    (0..w.div_ceil(STRIPE))
+        .into_par_iter()
+        .map(|k| {
+            let cols = k * STRIPE..((k + 1) * STRIPE).min(w);
+            let sw = cols.len();
+            let mut g = Vec::with_capacity(sw * hgt);
+            let mut run = vec![edge; sw];
+            for r in 0..hgt {
+                let row = &src[r * w + cols.start..r * w + cols.end];
+                for (d, &source) in run.iter_mut().zip(row) {
+                    *d = if source { 0 } else { (*d + 1).min(cap) };
+                }
+                g.extend_from_slice(&run);
+            }
+            run.fill(edge);
+            for r in (0..hgt).rev() {
+                let row = &src[r * w + cols.start..r * w + cols.end];
+                let out = &mut g[r * sw..(r + 1) * sw];
+                for ((d, &source), o) in run.iter_mut().zip(row).zip(out) {
+                    *d = if source { 0 } else { (*d + 1).min(cap) };
+                    *o = (*o).min(*d);
+                }
+            }
+            g
         })
         .collect()
 }
