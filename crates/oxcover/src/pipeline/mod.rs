@@ -76,16 +76,24 @@ pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
     let within = targets
         .extent(&work_map)
         .filter(|_| request.clearance <= 0.0);
-    // The segmentation needs only the map: found while the problem is
-    // built (same result whatever the thread count).
-    let (problem, rooms) = rayon::join(
-        || request.problem_within(&work_map, within),
+    // The segmentation needs only the map: found while the problem, the
+    // target's cells and its region are (same result whatever the thread
+    // count).
+    let (prepared, rooms) = rayon::join(
+        || -> Result<_> {
+            let problem = request.problem_within(&work_map, within)?;
+            let target = targets.required(map, problem.cells())?.map(|t| {
+                let region = target_region(&problem, &t.required);
+                (t, region)
+            });
+            Ok((problem, target))
+        },
         || request.rooms.then(|| PlanRooms::new(&work_map, request)),
     );
-    let problem = problem?;
+    let (problem, target) = prepared?;
     let lost = clearance_lost(&work_map, &problem, request)?;
     let maps = (map, &*work_map, within.is_some());
-    let mut outcome = plan_problem(maps, problem, rooms, blocked_cells, request, t0)?;
+    let mut outcome = plan_problem(maps, (problem, target), rooms, blocked_cells, request, t0)?;
     outcome.clearance_lost_cells = lost;
     Ok(outcome)
 }
@@ -113,24 +121,32 @@ fn clearance_lost(
 
 /// Plans `problem` (built on the map with keep-out applied, `work_map`;
 /// coverable cells only in the target's window where `windowed`) for
-/// `request`.
+/// `request`: its coverage target and the target's region
+/// ([`target_region`]), if the request narrows what to cover.
 fn plan_problem(
     (map, work_map, windowed): (&OccupancyGrid, &OccupancyGrid, bool),
-    problem: CoverageProblem,
+    (problem, target): (CoverageProblem, Option<(TargetCells, Grid<bool>)>),
     rooms: Option<PlanRooms<'_>>,
     blocked_cells: usize,
     request: &PlanRequest,
     t0: Instant,
 ) -> Result<PlanOutcome> {
     let targets = &request.targets;
-    if let Some(target) = targets.required(map, problem.cells())? {
+    if let Some((target, region)) = target {
         // The whole map's problem, should the target's plan be compared
         // with the map's (built again where its coverable cells were found
         // in the target's window only).
         let kept = (!windowed).then(|| problem.clone());
         let whole = || kept.map_or_else(|| request.problem(work_map), Ok);
         let problem = problem.with_required(&target.required)?;
-        let mut outcome = plan_target(&problem, whole, &target, rooms.as_ref(), request, t0)?;
+        let mut outcome = plan_target(
+            &problem,
+            whole,
+            (&target, region),
+            rooms.as_ref(),
+            request,
+            t0,
+        )?;
         // Resuming: the interrupted plan's remainder, where it is faster.
         if let Some(rest) = remainder::continued(map, &problem, request, t0)?
             && rest.evaluation.metrics.est_time_s < outcome.evaluation.metrics.est_time_s
@@ -221,12 +237,11 @@ fn keep_out_spares_start(
 fn plan_target(
     problem: &CoverageProblem,
     whole: impl FnOnce() -> Result<CoverageProblem>,
-    target: &TargetCells,
+    (target, region): (&TargetCells, Grid<bool>),
     rooms: Option<&PlanRooms<'_>>,
     request: &PlanRequest,
     t0: Instant,
 ) -> Result<PlanOutcome> {
-    let region = target_region(problem, &target.required);
     let (w, h) = (region.width(), region.height());
     let labels = match (rooms, &target.room_labels) {
         (Some(rooms), _) => Cow::Borrowed(&rooms.rooms.labels),

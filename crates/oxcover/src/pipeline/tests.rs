@@ -251,9 +251,14 @@ fn a_zone_plans_the_same_with_coverable_cells_in_its_window() {
         assert!(within.is_some());
         let plan = |within| {
             let problem = request.problem_within(&map, within).unwrap();
+            let target = request.targets.required(&map, problem.cells()).unwrap();
+            let target = target.map(|t| {
+                let region = target_region(&problem, &t.required);
+                (t, region)
+            });
             let rooms = Some(rooms::PlanRooms::new(&map, &request));
             let maps = (&map, &map, within.is_some());
-            plan_problem(maps, problem, rooms, 0, &request, Instant::now()).unwrap()
+            plan_problem(maps, (problem, target), rooms, 0, &request, Instant::now()).unwrap()
         };
         let (windowed, everywhere) = (plan(within), plan(None));
         assert_eq!(windowed.points, everywhere.points);
