@@ -200,11 +200,18 @@ impl CoarseGrid {
         w: &mut Window,
     ) -> Option<Vec<Cell>> {
         let (from, to) = (self.representative(a)?, self.representative(b)?);
+        let (rows, cols) = self.pair_window(a, b);
+        w.shortest(plannable, rows, cols, from, to)
+    }
+
+    /// The fine rows and columns of the rectangle round blocks `a` and `b`.
+    fn pair_window(&self, a: Cell, b: Cell) -> (Range<usize>, Range<usize>) {
         let (ra, ca) = self.block_cells(a);
         let (rb, cb) = self.block_cells(b);
-        let rows = ra.start.min(rb.start)..ra.end.max(rb.end);
-        let cols = ca.start.min(cb.start)..ca.end.max(cb.end);
-        w.shortest(plannable, rows, cols, from, to)
+        (
+            ra.start.min(rb.start)..ra.end.max(rb.end),
+            ca.start.min(cb.start)..ca.end.max(cb.end),
+        )
     }
 
     /// Whether [`Self::window_path`] finds a path (the same answer, found
@@ -213,10 +220,7 @@ impl CoarseGrid {
         let (Some(from), Some(to)) = (self.representative(a), self.representative(b)) else {
             return false;
         };
-        let (ra, ca) = self.block_cells(a);
-        let (rb, cb) = self.block_cells(b);
-        let rows = ra.start.min(rb.start)..ra.end.max(rb.end);
-        let cols = ca.start.min(cb.start)..ca.end.max(cb.end);
+        let (rows, cols) = self.pair_window(a, b);
         if cols.len() > 64 {
             return w.shortest(plannable, rows, cols, from, to).is_some();
         }
