@@ -13,7 +13,7 @@ use crate::admissible::{TOLERANCE_CELLS, admissible};
 use crate::components::{components4, reachable};
 use crate::edt::center_within_sq;
 use crate::error::{Error, Result, non_negative, positive};
-use crate::grid::{Cell, Grid};
+use crate::grid::{Cell, Grid, Window};
 use crate::math::Point;
 use crate::occupancy::{Occupancy, OccupancyGrid};
 
@@ -255,9 +255,6 @@ impl Coverability {
         self.coverable.count_true()
     }
 }
-
-/// Rows `r0..r1` and columns `c0..c1` of a grid.
-pub type Window = (usize, usize, usize, usize);
 
 /// Free cells whose centre lies within `tool_cells` (in cells) of a `centres` cell centre.
 #[must_use]

@@ -169,6 +169,9 @@ impl Dir8 {
     }
 }
 
+/// Rows `r0..r1` and columns `c0..c1` of a grid, as `(r0, r1, c0, c1)`.
+pub type Window = (usize, usize, usize, usize);
+
 /// A dense `width × height` grid of `T`, row-major, row 0 at the top.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -391,10 +394,7 @@ impl<T> Grid<T> {
     /// accepts none. (Rows in parallel, each read 64 cells at a time to
     /// its first and last accepted cell.)
     #[must_use]
-    pub fn bounding_box(
-        &self,
-        inside: impl Fn(&T) -> bool + Sync,
-    ) -> Option<(usize, usize, usize, usize)>
+    pub fn bounding_box(&self, inside: impl Fn(&T) -> bool + Sync) -> Option<Window>
     where
         T: Sync,
     {
@@ -428,11 +428,7 @@ impl<T> Grid<T> {
     /// The window `(r0, r1, c0, c1)` widened by `k` cells on every side,
     /// cut to this grid (saturating: a huge `k` takes the whole grid).
     #[must_use]
-    pub fn widen(
-        &self,
-        (r0, r1, c0, c1): (usize, usize, usize, usize),
-        k: usize,
-    ) -> (usize, usize, usize, usize) {
+    pub fn widen(&self, (r0, r1, c0, c1): Window, k: usize) -> Window {
         (
             r0.saturating_sub(k),
             r1.saturating_add(k).min(self.height),
@@ -447,7 +443,7 @@ impl<T> Grid<T> {
     /// # Panics
     /// If the window reaches past the grid.
     #[must_use]
-    pub fn crop(&self, (r0, r1, c0, c1): (usize, usize, usize, usize)) -> Self
+    pub fn crop(&self, (r0, r1, c0, c1): Window) -> Self
     where
         T: Clone,
     {

@@ -7,7 +7,7 @@
 
 use std::collections::{BTreeMap, VecDeque};
 
-use oxcover_grid::{Cell, Grid};
+use oxcover_grid::{Cell, Grid, Window};
 
 use rayon::prelude::*;
 
@@ -46,10 +46,6 @@ fn beside(i: usize, w: usize, h: usize) -> [Option<usize>; 4] {
         (r + 1 < h).then_some(i + w),
     ]
 }
-
-/// Rows `r0..r1` and columns `c0..c1` of a grid: the part that holds every
-/// free cell.
-pub(super) type Window = (usize, usize, usize, usize);
 
 /// [`super::doorways`] of the free cells of `free`, all inside `window`,
 /// on blocks of `k × k` cells (`k` at least 2) laid from the window's

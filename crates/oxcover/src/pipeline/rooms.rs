@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use oxcover_decomp::{RoomParams, Rooms, voronoi};
 use oxcover_grid::footprint::covered_cells_of;
-use oxcover_grid::{Cell, Grid, OccupancyGrid, Point};
+use oxcover_grid::{Cell, Grid, OccupancyGrid, Point, Window};
 use oxcover_planners::{
     BoundaryRoute, CoverageProblem, RoomUnits, room_order, unit_claims, unit_exits_with,
 };
@@ -61,9 +61,6 @@ pub(super) struct PlanRooms<'m> {
     /// Where `rooms` are a window's: the map and the window.
     local: Option<(&'m OccupancyGrid, Window)>,
 }
-
-/// Rows `r0..r1` and columns `c0..c1` of a grid.
-type Window = (usize, usize, usize, usize);
 
 impl<'m> PlanRooms<'m> {
     /// The rooms of `map` (keep-out applied) for `request`.

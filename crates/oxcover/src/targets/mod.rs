@@ -33,7 +33,7 @@ pub use self::raster::{Placement, disc_centres, line_squares, polygon_centres, p
 use std::borrow::Cow;
 
 use oxcover_grid::footprint::covered_cells;
-use oxcover_grid::{Cell, Coverability, Grid, Occupancy, OccupancyGrid, Point, admissible};
+use oxcover_grid::{Cell, Coverability, Grid, Occupancy, OccupancyGrid, Point, Window, admissible};
 
 use crate::error::{Error, Result};
 use crate::metrics::{Evaluation, MetricParams, evaluate, evaluate_covered};
@@ -123,7 +123,7 @@ impl Targets {
     /// of their bounding boxes), `None` where neither is given: the
     /// required cells lie there, whatever else narrows them.
     #[must_use]
-    pub fn extent(&self, map: &OccupancyGrid) -> Option<(usize, usize, usize, usize)> {
+    pub fn extent(&self, map: &OccupancyGrid) -> Option<Window> {
         use geo::BoundingRect;
         let frame = map.frame();
         let (w, h) = (map.width() as f64, map.height() as f64);
