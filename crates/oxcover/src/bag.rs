@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use oxcover_grid::{Cell, OccupancyGrid, Point};
+use oxcover_grid::{OccupancyGrid, Point};
 use oxcover_planners::TimeModel;
 use oxcover_rosbag::msgs::MarkerArray;
 use oxcover_rosbag::{OdomSample, PlanBag, StampedPose, markers};
@@ -13,7 +13,7 @@ use oxcover_rosbag::{OdomSample, PlanBag, StampedPose, markers};
 use crate::error::{Error, Result};
 use crate::metrics::arrival_times;
 use crate::render::{LegendMark, Overlay};
-use crate::rooms::{SegmentOptions, report, segment};
+use crate::rooms::{SegmentOptions, room_anchors, segment};
 use crate::targets::Targets;
 use oxcover_decomp::Rooms;
 
@@ -59,37 +59,15 @@ pub fn path_poses(points: &[Point], resolution: f64, time: &TimeModel) -> Vec<St
 pub fn room_markers(map: &OccupancyGrid) -> Result<MarkerArray> {
     let options = SegmentOptions::default();
     let rooms = segment(map, &options)?;
-    Ok(label_markers(map, &rooms, &options))
+    Ok(label_markers(map, &rooms))
 }
 
-/// Room outlines and labels of `rooms` (segmented with `options`), each
-/// label at its room's cell nearest the room's centroid (the centroid
-/// `oxcover segment` reports, which may lie outside an L-shaped room).
+/// Room outlines and labels of `rooms`, each label at its room's anchor
+/// ([`room_anchors`]: the cell nearest the centroid `oxcover segment`
+/// reports).
 #[must_use]
-pub fn label_markers(map: &OccupancyGrid, rooms: &Rooms, options: &SegmentOptions) -> MarkerArray {
-    let frame = map.frame();
-    let labels = &rooms.labels;
-    let centroids: Vec<Point> = report(map, rooms, options)
-        .rooms
-        .iter()
-        .map(|r| Point::new(r.centroid[0], r.centroid[1]))
-        .collect();
-    let mut best: Vec<Option<(f64, Cell)>> = vec![None; centroids.len() + 1];
-    for c in labels.cells() {
-        let l = labels[c] as usize;
-        if let Some(centroid) = l.checked_sub(1).and_then(|i| centroids.get(i)) {
-            let d = (frame.cell_center(c) - centroid).norm();
-            if best[l].is_none_or(|(b, _)| d < b) {
-                best[l] = Some((d, c));
-            }
-        }
-    }
-    let anchors: Vec<(u32, Point)> = best
-        .iter()
-        .enumerate()
-        .filter_map(|(l, b)| b.map(|(_, c)| (l as u32, frame.cell_center(c))))
-        .collect();
-    markers::rooms(labels, frame, &anchors)
+pub fn label_markers(map: &OccupancyGrid, rooms: &Rooms) -> MarkerArray {
+    markers::rooms(&rooms.labels, map.frame(), &room_anchors(map, rooms))
 }
 
 /// Zones (green outlines, namespace `zones`), keep-out areas (red,
@@ -174,14 +152,16 @@ pub fn bag_bytes(
 
 /// What a bag of a plan holds, decoded for a picture: the path of
 /// `/coverage_path`, the executed trajectory of `/odom`, and the lines of
-/// the markers of `/rooms` and `/coverage_targets` in their colours.
+/// the markers of `/rooms` and `/coverage_targets` in their colours, and
+/// their text (the rooms' labels).
 #[derive(Clone, Debug, Default)]
 pub struct DecodedBag {
     /// `/coverage_path`'s positions.
     pub path: Option<Vec<Point>>,
     /// `/odom`'s positions, in order.
     pub odom: Option<Vec<Point>>,
-    /// Markers' lines: line strips as strokes, line lists as lines.
+    /// Markers' lines (line strips as strokes, line lists as lines) and
+    /// text.
     pub overlay: Overlay,
 }
 
@@ -225,6 +205,10 @@ pub fn decode_bag(path: &Path) -> Result<DecodedBag> {
                     let rgb = [c.r, c.g, c.b].map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8);
                     let pts: Vec<Point> = marker.points.iter().map(point).collect();
                     match marker.kind {
+                        Marker::TEXT_VIEW_FACING if !marker.text.is_empty() => {
+                            let at = point(&marker.pose.position);
+                            out.overlay.texts.push((at, marker.text.clone(), rgb));
+                        }
                         Marker::LINE_STRIP => out.overlay.strokes.push((pts, rgb)),
                         Marker::LINE_LIST => {
                             out.overlay
@@ -259,6 +243,37 @@ pub fn decode_bag(path: &Path) -> Result<DecodedBag> {
 mod tests {
     use super::*;
     use crate::metrics::PathShape;
+
+    /// The rooms' labels written as text markers come back from the bag
+    /// as text at the same places (what `oxcover render BAG` draws).
+    #[test]
+    fn room_labels_come_back_from_the_bag() {
+        let mut rows = vec![".".repeat(50); 30];
+        for (r, row) in rows.iter_mut().enumerate() {
+            if !(12..18).contains(&r) {
+                row.replace_range(20..21, "#");
+            }
+        }
+        let (map, _) = oxcover_grid::io::parse_ascii(&rows.join("\n")).expect("valid map");
+        let map = OccupancyGrid::new(map.cells().clone(), 0.1, Point::new(-1.0, 2.0));
+        let rooms = segment(&map, &SegmentOptions::default()).expect("rooms");
+        assert!(rooms.count() >= 2);
+        let extras = BagExtras {
+            rooms: Some(label_markers(&map, &rooms)),
+            ..BagExtras::default()
+        };
+        let out = std::env::temp_dir().join(format!("oxcover-labels-{}.mcap", std::process::id()));
+        let bytes = bag_bytes(&map, &[], &TimeModel::default(), extras, &out).expect("bag");
+        std::fs::write(&out, bytes).expect("write");
+        let decoded = decode_bag(&out);
+        std::fs::remove_file(&out).expect("remove");
+        let texts = decoded.expect("decodes").overlay.texts;
+        let want: Vec<(Point, String, [u8; 3])> = room_anchors(&map, &rooms)
+            .into_iter()
+            .map(|(l, p)| (p, l.to_string(), [0, 0, 0]))
+            .collect();
+        assert_eq!(texts, want);
+    }
 
     #[test]
     fn stamps_end_at_the_estimated_time_and_never_decrease() {

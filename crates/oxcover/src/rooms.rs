@@ -3,7 +3,7 @@
 //! centres and widths), as JSON, and drawn with one colour per room.
 
 use oxcover_decomp::{RoomParams, Rooms, doorways, morphological, voronoi};
-use oxcover_grid::OccupancyGrid;
+use oxcover_grid::{Cell, OccupancyGrid, Point};
 use serde::Serialize;
 
 use crate::error::{Error, Result};
@@ -139,11 +139,10 @@ pub fn segment(map: &OccupancyGrid, options: &SegmentOptions) -> Result<Rooms> {
     })
 }
 
-/// The report of `rooms` on `map`.
-#[must_use]
-pub fn report(map: &OccupancyGrid, rooms: &Rooms, options: &SegmentOptions) -> RoomsReport {
+/// Each room's centroid (metres, map frame): the mean of its cells'
+/// centres, `centroids[label - 1]`.
+fn centroids(map: &OccupancyGrid, rooms: &Rooms) -> Vec<Point> {
     let f = map.frame();
-    let cell = f.resolution() * f.resolution();
     let mut sums = vec![(0.0, 0.0); rooms.count()];
     for c in rooms.labels.cells() {
         let l = rooms.labels[c] as usize;
@@ -153,15 +152,50 @@ pub fn report(map: &OccupancyGrid, rooms: &Rooms, options: &SegmentOptions) -> R
             sums[l - 1].1 += p.y;
         }
     }
+    sums.iter()
+        .zip(&rooms.areas)
+        .map(|(&(sx, sy), &n)| Point::new(sx / n as f64, sy / n as f64))
+        .collect()
+}
+
+/// Where each room's label is shown: the centre of its cell nearest its
+/// centroid (the centroid [`report`] gives, which may lie outside an
+/// L-shaped room), as `(label, point)` in label order.
+#[must_use]
+pub fn room_anchors(map: &OccupancyGrid, rooms: &Rooms) -> Vec<(u32, Point)> {
+    let frame = map.frame();
+    let labels = &rooms.labels;
+    let centroids = centroids(map, rooms);
+    let mut best: Vec<Option<(f64, Cell)>> = vec![None; centroids.len() + 1];
+    for c in labels.cells() {
+        let l = labels[c] as usize;
+        if let Some(centroid) = l.checked_sub(1).and_then(|i| centroids.get(i)) {
+            let d = (frame.cell_center(c) - centroid).norm();
+            if best[l].is_none_or(|(b, _)| d < b) {
+                best[l] = Some((d, c));
+            }
+        }
+    }
+    best.iter()
+        .enumerate()
+        .filter_map(|(l, b)| b.map(|(_, c)| (l as u32, frame.cell_center(c))))
+        .collect()
+}
+
+/// The report of `rooms` on `map`.
+#[must_use]
+pub fn report(map: &OccupancyGrid, rooms: &Rooms, options: &SegmentOptions) -> RoomsReport {
+    let f = map.frame();
+    let cell = f.resolution() * f.resolution();
     let rooms_out = rooms
         .areas
         .iter()
-        .zip(&sums)
+        .zip(centroids(map, rooms))
         .enumerate()
-        .map(|(i, (&n, &(sx, sy)))| RoomInfo {
+        .map(|(i, (&n, centre))| RoomInfo {
             label: i as u32 + 1,
             area_m2: n as f64 * cell,
-            centroid: [sx / n as f64, sy / n as f64],
+            centroid: [centre.x, centre.y],
             seeded: i < rooms.seeded,
         })
         .collect();
@@ -188,9 +222,11 @@ pub fn report(map: &OccupancyGrid, rooms: &Rooms, options: &SegmentOptions) -> R
     }
 }
 
-/// Door centres as markers over a picture of the rooms.
+/// What a picture of the rooms shows over them: door centres as markers,
+/// and each room's label at its anchor ([`room_anchors`]), the label that
+/// `--rooms-only` takes.
 #[must_use]
-pub fn door_overlay(map: &OccupancyGrid, rooms: &Rooms) -> Overlay {
+pub fn rooms_overlay(map: &OccupancyGrid, rooms: &Rooms) -> Overlay {
     let f = map.frame();
     let red = [200, 30, 30];
     Overlay {
@@ -202,10 +238,15 @@ pub fn door_overlay(map: &OccupancyGrid, rooms: &Rooms) -> Overlay {
             .map(|d| (f.cell_center(d.centre), red, MarkerShape::Disc, 4.0))
             .collect(),
         legend: vec![("door".into(), red, LegendMark::Marker(MarkerShape::Disc))],
+        texts: room_anchors(map, rooms)
+            .into_iter()
+            .map(|(l, p)| (p, l.to_string(), [0, 0, 0]))
+            .collect(),
     }
 }
 
-/// A picture of `rooms` on `map`: one colour per room, doors marked.
+/// A picture of `rooms` on `map`: one colour per room, doors and labels
+/// as `overlay` ([`rooms_overlay`]) shows them.
 #[must_use]
 pub fn scene<'a>(
     map: &'a OccupancyGrid,
@@ -228,4 +269,102 @@ pub fn scene<'a>(
     s.regions = Some(&rooms.labels);
     s.overlay = Some(overlay);
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::render_bytes;
+
+    /// Two rooms joined by a door, the second an L whose centroid lies in
+    /// the corner it lacks, at 0.1 m a cell.
+    fn two_rooms() -> OccupancyGrid {
+        let mut rows: Vec<String> = Vec::new();
+        for r in 0..40 {
+            rows.push(
+                (0..60)
+                    .map(|c| {
+                        let border = r == 0 || r == 39 || c == 0 || c == 59;
+                        // The wall between the rooms, with a door 1 m wide.
+                        let wall = c == 25 && !(18..28).contains(&r);
+                        // The L's missing corner.
+                        let corner = c > 25 && r < 22 && c > 40;
+                        if border || wall || corner { '#' } else { '.' }
+                    })
+                    .collect(),
+            );
+        }
+        let (map, _) = oxcover_grid::io::parse_ascii(&rows.join("\n")).expect("valid map");
+        OccupancyGrid::new(map.cells().clone(), 0.1, Point::new(0.0, 0.0))
+    }
+
+    #[test]
+    fn each_label_is_shown_in_its_own_room_nearest_its_centroid() {
+        let map = two_rooms();
+        let rooms = segment(&map, &SegmentOptions::default()).expect("rooms");
+        assert!(rooms.count() >= 2, "{} rooms", rooms.count());
+        let rep = report(&map, &rooms, &SegmentOptions::default());
+        let anchors = room_anchors(&map, &rooms);
+        assert_eq!(
+            anchors.iter().map(|a| a.0).collect::<Vec<_>>(),
+            (1..=rooms.count() as u32).collect::<Vec<_>>()
+        );
+        let f = map.frame();
+        for (&(label, at), info) in anchors.iter().zip(&rep.rooms) {
+            let cell = f.cell_at(&at).expect("on the map");
+            assert_eq!(rooms.labels[cell], label);
+            let centroid = Point::new(info.centroid[0], info.centroid[1]);
+            let d = (at - centroid).norm();
+            for c in rooms.labels.cells().filter(|&c| rooms.labels[c] == label) {
+                assert!((f.cell_center(c) - centroid).norm() >= d - 1e-12);
+            }
+        }
+        // The overlay writes each label at its anchor, as text.
+        let o = rooms_overlay(&map, &rooms);
+        let texts: Vec<(Point, String)> = o.texts.iter().map(|t| (t.0, t.1.clone())).collect();
+        let want: Vec<(Point, String)> = anchors.iter().map(|&(l, p)| (p, l.to_string())).collect();
+        assert_eq!(texts, want);
+    }
+
+    #[test]
+    fn pictures_of_the_rooms_carry_their_labels() {
+        let map = two_rooms();
+        let rooms = segment(&map, &SegmentOptions::default()).expect("rooms");
+        let overlay = rooms_overlay(&map, &rooms);
+        let picture = scene(&map, &rooms, &overlay, "rooms".into());
+        let svg =
+            String::from_utf8(render_bytes(&picture, std::path::Path::new("r.svg")).expect("svg"))
+                .expect("utf-8");
+        for l in 1..=rooms.count() {
+            assert!(
+                svg.contains(&format!("paint-order=\"stroke\">{l}</text>")),
+                "label {l}"
+            );
+        }
+        // In the PNG, black glyph pixels where the first label stands (the
+        // room around it is coloured, the walls are far off), none there
+        // without the labels.
+        let at = |o: &Overlay| {
+            let s = scene(&map, &rooms, o, "rooms".into());
+            let png = render_bytes(&s, std::path::Path::new("r.png")).expect("png");
+            let img = tiny_skia::Pixmap::decode_png(&png).expect("decodes");
+            let layout = crate::render::Layout::of(&s);
+            let (x, y) = layout.pixel_of(&map, &overlay.texts[0].0);
+            let (x, y) = (x.round() as i64, y.round() as i64);
+            let mut black = 0;
+            for py in y - 8..y + 8 {
+                for px in x - 8..x + 8 {
+                    let p = img.pixel(px as u32, py as u32).expect("inside");
+                    black += usize::from(p.red() == 0 && p.green() == 0 && p.blue() == 0);
+                }
+            }
+            black
+        };
+        assert!(at(&overlay) > 20);
+        let bare = Overlay {
+            texts: Vec::new(),
+            ..overlay.clone()
+        };
+        assert_eq!(at(&bare), 0);
+    }
 }

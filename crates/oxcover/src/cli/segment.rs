@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use clap::ValueEnum;
 use oxcover::render::render_bytes;
 use oxcover::report::table;
-use oxcover::rooms::{Method, SegmentOptions, door_overlay, report, scene, segment};
+use oxcover::rooms::{Method, SegmentOptions, report, rooms_overlay, scene, segment};
 use oxcover::{Error, Result};
 
 use super::args::{MCAP, MapArgs, PNG, SVG, asked, check_outputs, load};
@@ -112,7 +112,7 @@ pub(crate) fn cmd_segment(a: &SegmentArgs) -> Result<()> {
             .map_err(|e| Error::Internal(format!("rooms serialisation failed: {e}")))?;
         files.push((f.clone(), (json + "\n").into_bytes()));
     }
-    let overlay = door_overlay(&map, &rooms);
+    let overlay = rooms_overlay(&map, &rooms);
     let title = format!(
         "{} - rooms",
         oxcover::pipeline::short_name(&a.map.display().to_string())
@@ -126,7 +126,7 @@ pub(crate) fn cmd_segment(a: &SegmentArgs) -> Result<()> {
     }
     if let Some(f) = &a.bag {
         let extras = oxcover::bag::BagExtras {
-            rooms: Some(oxcover::bag::label_markers(&map, &rooms, &options)),
+            rooms: Some(oxcover::bag::label_markers(&map, &rooms)),
             ..oxcover::bag::BagExtras::default()
         };
         let time = oxcover::planners::TimeModel::default();

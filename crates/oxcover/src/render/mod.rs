@@ -110,6 +110,9 @@ pub struct Overlay {
     pub markers: Vec<(Point, [u8; 3], MarkerShape, f64)>,
     /// Extra legend entries.
     pub legend: Vec<(String, [u8; 3], LegendMark)>,
+    /// Text centred on a map point, in a colour each, on a white halo
+    /// (room labels).
+    pub texts: Vec<(Point, String, [u8; 3])>,
 }
 
 /// What a map pixel shows, by priority (highest first when cells share a pixel).

@@ -190,6 +190,24 @@ fn overlay(pm: &mut Pixmap, scene: &Scene<'_>, layout: &Layout, o: &Overlay, str
         let (x, y) = layout.pixel_of(scene.map, p);
         marker(pm, x as f32, y as f32, *rgb, *shape, *r as f32);
     }
+    for (p, s, rgb) in &o.texts {
+        let (x, y) = layout.pixel_of(scene.map, p);
+        // Centred on the point: 16 px a glyph, 16 px tall.
+        let (x, y) = (x.round() as i64 - 8 * s.len() as i64, y.round() as i64 - 8);
+        for (dx, dy) in [
+            (-2, 0),
+            (2, 0),
+            (0, -2),
+            (0, 2),
+            (-2, -2),
+            (2, 2),
+            (-2, 2),
+            (2, -2),
+        ] {
+            glyphs(pm, x + dx, y + dy, s, [255, 255, 255]);
+        }
+        glyphs(pm, x, y, s, *rgb);
+    }
 }
 
 fn marker(pm: &mut Pixmap, cx: f32, cy: f32, rgb: [u8; 3], shape: MarkerShape, r: f32) {
@@ -270,8 +288,14 @@ fn disc(pm: &mut Pixmap, cx: f32, cy: f32, r: f32, rgb: [u8; 3]) {
 
 /// Draws ASCII text with the 8×8 font at twice its size (16 px per glyph).
 fn text(pm: &mut Pixmap, x: u32, y: u32, s: &str, rgb: [u8; 3]) {
-    const SCALE: u32 = 2;
-    let (pw, ph) = (pm.width(), pm.height());
+    glyphs(pm, i64::from(x), i64::from(y), s, rgb);
+}
+
+/// [`text`] with its top left corner at `(x, y)`, which may lie off the
+/// picture (what does is cut).
+fn glyphs(pm: &mut Pixmap, x: i64, y: i64, s: &str, rgb: [u8; 3]) {
+    const SCALE: i64 = 2;
+    let (pw, ph) = (i64::from(pm.width()), i64::from(pm.height()));
     let data = pm.data_mut();
     for (i, ch) in s.chars().enumerate() {
         let code = if ch.is_ascii() {
@@ -280,16 +304,16 @@ fn text(pm: &mut Pixmap, x: u32, y: u32, s: &str, rgb: [u8; 3]) {
             b'?' as usize
         };
         let glyph = font8x8::legacy::BASIC_LEGACY[code];
-        let gx = x + i as u32 * 8 * SCALE;
+        let gx = x + i as i64 * 8 * SCALE;
         for (row, bits) in glyph.iter().enumerate() {
-            for col in 0..8u32 {
+            for col in 0..8i64 {
                 if bits & (1 << col) == 0 {
                     continue;
                 }
                 for dy in 0..SCALE {
                     for dx in 0..SCALE {
-                        let (px, py) = (gx + col * SCALE + dx, y + row as u32 * SCALE + dy);
-                        if px < pw && py < ph {
+                        let (px, py) = (gx + col * SCALE + dx, y + row as i64 * SCALE + dy);
+                        if (0..pw).contains(&px) && (0..ph).contains(&py) {
                             let o = ((py * pw + px) * 4) as usize;
                             data[o..o + 4].copy_from_slice(&[rgb[0], rgb[1], rgb[2], 255]);
                         }

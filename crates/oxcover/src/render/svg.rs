@@ -233,6 +233,15 @@ fn overlay(s: &mut String, scene: &Scene<'_>, layout: &Layout, o: &Overlay, stro
         let (x, y) = layout.pixel_of(scene.map, p);
         marker(s, x, y, *rgb, *shape, *r);
     }
+    for (p, t, rgb) in &o.texts {
+        let (x, y) = layout.pixel_of(scene.map, p);
+        let _ = writeln!(
+            s,
+            r#"<text x="{x:.2}" y="{y:.2}" text-anchor="middle" dominant-baseline="central" font-family="DejaVu Sans Mono, Menlo, Consolas, monospace" font-size="16" font-weight="bold" fill="{}" stroke="white" stroke-width="4" paint-order="stroke">{}</text>"#,
+            hex(*rgb),
+            escape(t)
+        );
+    }
 }
 
 fn marker(s: &mut String, x: f64, y: f64, rgb: [u8; 3], shape: MarkerShape, r: f64) {
