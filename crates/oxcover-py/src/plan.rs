@@ -7,9 +7,8 @@ use std::sync::Arc;
 
 use numpy::PyArray2;
 use oxcover::grid::{DiscRobot, OccupancyGrid};
-use oxcover::pipeline::{Outputs, PlanOutcome, PlanRequest, plan_scene};
+use oxcover::pipeline::{Outputs, PlanOutcome, PlanRequest, plan_pictures};
 use oxcover::planners::{PlannerOptions, Start, TimeModel};
-use oxcover::render::render_bytes;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
@@ -98,8 +97,15 @@ impl Plan {
     /// released.
     fn picture(&self, py: Python<'_>, extension: &str) -> PyResult<Vec<u8>> {
         detached(py, || {
-            let scene = plan_scene(&self.map, &self.map_name, &self.request, &self.outcome);
-            render_bytes(&scene, Path::new(&format!("plan.{extension}")))
+            let file = format!("plan.{extension}");
+            let mut drawn = plan_pictures(
+                &self.map,
+                &self.map_name,
+                &self.request,
+                &self.outcome,
+                &[Path::new(&file)],
+            )?;
+            Ok(drawn.remove(0))
         })
     }
 }
@@ -161,7 +167,7 @@ impl Plan {
     }
 
     /// The picture `oxcover plan --png` draws (map, covered cells, path,
-    /// metrics legend), as PNG bytes.
+    /// the targets, metrics legend), as PNG bytes.
     fn to_png<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
         let bytes = self.picture(py, "png")?;
         Ok(PyBytes::new(py, &bytes))

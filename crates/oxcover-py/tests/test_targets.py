@@ -1,6 +1,7 @@
-"""Coverage targets from Python: each keyword gives the path file and the
-metrics `oxcover plan` and `oxcover eval` give with the same option, byte
-for byte, and a bad target raises with the command line's message."""
+"""Coverage targets from Python: each keyword gives the path file, the
+picture and the metrics `oxcover plan` and `oxcover eval` give with the
+same option, byte for byte, and a bad target raises with the command
+line's message."""
 
 import json
 
@@ -29,12 +30,15 @@ CASES = {
 @pytest.mark.parametrize("case", sorted(CASES))
 def test_each_target_keyword_plans_and_scores_as_the_command_line(cli, tmp_path, case):
     kwargs, options = CASES[case]
-    out = tmp_path / "cli.csv"
-    done = cli("plan", MAP, "--planner", "lanes", "--out", out, *ROBOT_FLAGS, *options)
+    out, png = tmp_path / "cli.csv", tmp_path / "cli.png"
+    done = cli("plan", MAP, "--planner", "lanes", "--out", out, "--png", png,
+               *ROBOT_FLAGS, *options)
     assert done.returncode == 0, done.stderr
     m = oxcover.load_map(MAP)
     p = oxcover.plan(m, "lanes", **ROBOT, **kwargs)
     assert p.to_csv() == out.read_text()
+    # The picture too, targets drawn (chosen rooms labelled).
+    assert p.to_png() == png.read_bytes()
     assert p.metrics["coverage"] == 1.0
     scored = cli("eval", MAP, out, *ROBOT_FLAGS, *[o for o in options if o != "--room-order" and o != "given"])
     assert scored.returncode == 0, scored.stderr

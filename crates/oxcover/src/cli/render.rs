@@ -38,7 +38,7 @@ pub(crate) fn cmd_render(a: &RenderArgs) -> Result<()> {
     check_outputs(&inputs, &[("--out", &a.out, PICTURE)])?;
     let map = load(&a.map, &a.robot.map)?;
     let targets = a.targets.targets()?;
-    let overlay = target_overlay(&targets);
+    let overlay = target_overlay(&targets, &map)?;
     let overlay = (overlay != Overlay::default()).then_some(&overlay);
     let name = short_name(&a.map.display().to_string());
     match &a.path {

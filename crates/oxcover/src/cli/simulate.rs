@@ -106,7 +106,12 @@ pub(crate) fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
     };
     let run = oxcover::closed_loop::execute_plan(&map, &request, &outcome, &cfg)?;
     let targets = &request.targets;
-    let overlay = oxcover::targets::target_overlay(targets);
+    // (Segments the map with --rooms-only: only for a picture.)
+    let overlay = if p.svg.is_some() || p.png.is_some() {
+        oxcover::targets::target_overlay(targets, &map)?
+    } else {
+        oxcover::render::Overlay::default()
+    };
     // Every output is made first and written as one set.
     let mut files: Vec<(std::path::PathBuf, Vec<u8>)> = Vec::new();
     if let Some(f) = &p.out {

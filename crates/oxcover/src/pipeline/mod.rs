@@ -37,7 +37,9 @@ use crate::error::Result;
 use crate::targets::{RoomOrder, TargetCells, TargetSummary};
 
 pub use self::load::{MapReading, load_map, load_map_with};
-pub use self::outputs::{Outputs, coverage_notes, metres, plan_scene, short_name, write_outputs};
+pub use self::outputs::{
+    Outputs, coverage_notes, metres, plan_pictures, plan_scene, short_name, write_outputs,
+};
 pub use self::request::{PlanOutcome, PlanRequest, PlannerInfo, RoomStretch, planner, planners};
 pub use self::rooms::{LOCAL_ROOMS_MARGIN_M, MIN_UNIT_M2, room_units};
 

@@ -52,6 +52,31 @@ pub fn plan_scene<'a>(
     }
 }
 
+/// The pictures of a plan of `request` on `map` (named `map_name`), one
+/// for each of `files` in the format its extension names: [`plan_scene`]
+/// with the request's targets drawn over it
+/// ([`crate::targets::target_overlay`]).
+///
+/// # Errors
+/// A bad picture extension; as [`crate::targets::target_overlay`].
+pub fn plan_pictures(
+    map: &OccupancyGrid,
+    map_name: &str,
+    request: &PlanRequest,
+    outcome: &PlanOutcome,
+    files: &[&Path],
+) -> Result<Vec<Vec<u8>>> {
+    if files.is_empty() {
+        return Ok(Vec::new());
+    }
+    let mut scene = plan_scene(map, map_name, request, outcome);
+    let overlay = crate::targets::target_overlay(&request.targets, map)?;
+    if overlay != Overlay::default() {
+        scene.overlay = Some(&overlay);
+    }
+    files.iter().map(|f| render_bytes(&scene, f)).collect()
+}
+
 /// Writes the CSV, pictures and report of a plan of `request` on `map`
 /// (named `map_name`), all of them or none ([`crate::output::write_files`]);
 /// returns the files written.
@@ -70,14 +95,9 @@ pub fn write_outputs(
     if let Some(p) = out.csv {
         files.push((p.to_path_buf(), to_csv(&outcome.points).into_bytes()));
     }
-    let mut scene = plan_scene(map, map_name, request, outcome);
-    let overlay = crate::targets::target_overlay(&request.targets);
-    if overlay != Overlay::default() {
-        scene.overlay = Some(&overlay);
-    }
-    for p in [out.svg, out.png].into_iter().flatten() {
-        files.push((p.to_path_buf(), render_bytes(&scene, p)?));
-    }
+    let pictures: Vec<&Path> = [out.svg, out.png].into_iter().flatten().collect();
+    let drawn = plan_pictures(map, map_name, request, outcome, &pictures)?;
+    files.extend(pictures.iter().map(|p| p.to_path_buf()).zip(drawn));
     if let Some(p) = out.report {
         let report = outcome.report(map, map_name, request);
         let json = serde_json::to_string_pretty(&report)

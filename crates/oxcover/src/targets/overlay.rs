@@ -1,12 +1,14 @@
 //! Targets drawn over a plan's picture: zones and the spot outlined,
 //! keep-out areas outlined and hatched, virtual walls as thick strokes,
-//! the done path in grey.
+//! the done path in grey, each chosen room's label at its anchor.
 
 use geo::{LineString, Polygon};
-use oxcover_grid::Point;
+use oxcover_grid::{OccupancyGrid, Point};
 
 use super::Targets;
+use crate::error::Result;
 use crate::render::{LegendMark, Overlay};
+use crate::rooms::{SegmentOptions, room_anchors, segment};
 
 const ZONE: [u8; 3] = [30, 150, 60];
 const KEEP_OUT: [u8; 3] = [200, 40, 40];
@@ -67,10 +69,22 @@ fn hatch(polygon: &Polygon<f64>, rgb: [u8; 3], overlay: &mut Overlay) {
     }
 }
 
-/// The drawing of `targets` (empty when there is none).
-#[must_use]
-pub fn target_overlay(targets: &Targets) -> Overlay {
+/// The drawing of `targets` on `map` (empty when there is none); with
+/// `--rooms-only`, each chosen room's label where `oxcover segment`'s
+/// picture writes it (so `map` is segmented then, as the target is).
+///
+/// # Errors
+/// As [`segment`] (not expected: its defaults are valid).
+pub fn target_overlay(targets: &Targets, map: &OccupancyGrid) -> Result<Overlay> {
     let mut o = Overlay::default();
+    if let Some(chosen) = &targets.rooms_only {
+        let rooms = segment(map, &SegmentOptions::default())?;
+        o.texts = room_anchors(map, &rooms)
+            .into_iter()
+            .filter(|(l, _)| chosen.contains(l))
+            .map(|(l, p)| (p, l.to_string(), [0, 0, 0]))
+            .collect();
+    }
     if let Some(done) = &targets.done {
         o.strokes.push((done.clone(), DONE));
         o.legend.push(("done".into(), DONE, LegendMark::Stroke));
@@ -106,7 +120,7 @@ pub fn target_overlay(targets: &Targets) -> Overlay {
         o.legend
             .push(("keep-out".into(), KEEP_OUT, LegendMark::Line));
     }
-    o
+    Ok(o)
 }
 
 #[cfg(test)]
@@ -126,5 +140,41 @@ mod tests {
         assert_eq!(s.len(), 2);
         assert_eq!(s[0], (Point::new(0.0, 0.0), Point::new(1.0, 1.0)));
         assert_eq!(s[1], (Point::new(3.0, 3.0), Point::new(4.0, 4.0)));
+    }
+
+    /// The chosen rooms' labels, and theirs only, where `segment`'s
+    /// picture writes them; none without `--rooms-only`.
+    #[test]
+    fn chosen_rooms_are_labelled() {
+        // Three rooms side by side, joined by doors.
+        let rows: Vec<String> = (0..20)
+            .map(|r| {
+                (0..62)
+                    .map(|c| {
+                        let wall = (c == 20 || c == 41) && !(8..12).contains(&r);
+                        if wall { '#' } else { '.' }
+                    })
+                    .collect()
+            })
+            .collect();
+        let (map, _) = oxcover_grid::io::parse_ascii(&rows.join("\n")).expect("valid map");
+        let map = OccupancyGrid::new(map.cells().clone(), 0.1, Point::new(0.0, 0.0));
+        let rooms = segment(&map, &SegmentOptions::default()).expect("rooms");
+        assert!(rooms.count() >= 3, "{} rooms", rooms.count());
+        let chosen = vec![3, 1];
+        let targets = Targets {
+            rooms_only: Some(chosen.clone()),
+            ..Targets::default()
+        };
+        let o = target_overlay(&targets, &map).expect("overlay");
+        let want: Vec<(Point, String, [u8; 3])> = room_anchors(&map, &rooms)
+            .into_iter()
+            .filter(|(l, _)| chosen.contains(l))
+            .map(|(l, p)| (p, l.to_string(), [0, 0, 0]))
+            .collect();
+        assert_eq!(want.len(), 2);
+        assert_eq!(o.texts, want);
+        let none = target_overlay(&Targets::default(), &map).expect("overlay");
+        assert_eq!(none, Overlay::default());
     }
 }
