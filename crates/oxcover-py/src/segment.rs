@@ -21,8 +21,8 @@ use crate::map::{Map, grid_row, rows_of};
 /// Returns a dict: `labels`, a uint32 array of the map's shape (0 = not free,
 /// else the 1-based room label; rows as `Map.to_array`), and the keys of
 /// `oxcover segment --out rooms.json`: `method`, the limits, `seeded` (rooms
-/// grown from seeds), `rooms` (label, area_m2, centroid in metres, seeded)
-/// and `doors` (the two rooms, centre in metres, cells).
+/// grown from seeds), `rooms` (label, area_m2, centroid and label_at in
+/// metres, seeded) and `doors` (the two rooms, centre in metres, cells).
 #[pyfunction]
 #[pyo3(signature = (map, *, method = "doorways", min_area = 1.0, max_area = 47.0, door_width = 1.6, rows = "up"))]
 pub(crate) fn segment<'py>(

@@ -18,6 +18,10 @@ pub struct RoomInfo {
     pub area_m2: f64,
     /// Mean position of its cells (m, map frame).
     pub centroid: [f64; 2],
+    /// Where its label is drawn: the centre of its cell nearest the
+    /// centroid, inside the room where the centroid of an L-shaped one is
+    /// not (m, map frame).
+    pub label_at: [f64; 2],
     /// Whether it grew from an eroded seed (else a free region no seed reached).
     pub seeded: bool,
 }
@@ -163,9 +167,13 @@ fn centroids(map: &OccupancyGrid, rooms: &Rooms) -> Vec<Point> {
 /// L-shaped room), as `(label, point)` in label order.
 #[must_use]
 pub fn room_anchors(map: &OccupancyGrid, rooms: &Rooms) -> Vec<(u32, Point)> {
+    anchors(map, rooms, &centroids(map, rooms))
+}
+
+/// [`room_anchors`] given the rooms' `centroids` ([`centroids`]).
+fn anchors(map: &OccupancyGrid, rooms: &Rooms, centroids: &[Point]) -> Vec<(u32, Point)> {
     let frame = map.frame();
     let labels = &rooms.labels;
-    let centroids = centroids(map, rooms);
     let mut best: Vec<Option<(f64, Cell)>> = vec![None; centroids.len() + 1];
     for c in labels.cells() {
         let l = labels[c] as usize;
@@ -187,15 +195,21 @@ pub fn room_anchors(map: &OccupancyGrid, rooms: &Rooms) -> Vec<(u32, Point)> {
 pub fn report(map: &OccupancyGrid, rooms: &Rooms, options: &SegmentOptions) -> RoomsReport {
     let f = map.frame();
     let cell = f.resolution() * f.resolution();
+    let centres = centroids(map, rooms);
+    let mut label_at = centres.clone();
+    for (l, p) in anchors(map, rooms, &centres) {
+        label_at[l as usize - 1] = p;
+    }
     let rooms_out = rooms
         .areas
         .iter()
-        .zip(centroids(map, rooms))
+        .zip(centres.iter().zip(&label_at))
         .enumerate()
-        .map(|(i, (&n, centre))| RoomInfo {
+        .map(|(i, (&n, (centre, at)))| RoomInfo {
             label: i as u32 + 1,
             area_m2: n as f64 * cell,
             centroid: [centre.x, centre.y],
+            label_at: [at.x, at.y],
             seeded: i < rooms.seeded,
         })
         .collect();
@@ -311,6 +325,7 @@ mod tests {
         );
         let f = map.frame();
         for (&(label, at), info) in anchors.iter().zip(&rep.rooms) {
+            assert_eq!(info.label_at, [at.x, at.y]);
             let cell = f.cell_at(&at).expect("on the map");
             assert_eq!(rooms.labels[cell], label);
             let centroid = Point::new(info.centroid[0], info.centroid[1]);
