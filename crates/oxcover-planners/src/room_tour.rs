@@ -372,14 +372,19 @@ pub fn unit_exits(
     units: &RoomUnits,
     order: &[u32],
 ) -> Vec<Option<Cell>> {
-    unit_exits_with(&problem.transit_wavefront(), units, order)
+    unit_exits_with(&mut problem.transit_wavefront(), units, order)
 }
 
 /// [`unit_exits`] with a wavefront over the problem's plannable cells
-/// ([`CoverageProblem::transit_wavefront`]) at hand: its searches work on
-/// copies of it (building one costs a pass over the map).
+/// ([`CoverageProblem::transit_wavefront`]) at hand, reused search after
+/// search (building or copying one costs a pass over the map, more than
+/// the searches between neighbouring units).
 #[must_use]
-pub fn unit_exits_with(wave: &Wavefront, units: &RoomUnits, order: &[u32]) -> Vec<Option<Cell>> {
+pub fn unit_exits_with(
+    wave: &mut Wavefront,
+    units: &RoomUnits,
+    order: &[u32],
+) -> Vec<Option<Cell>> {
     // Each unit's edge cells (a 4-neighbour in another unit or none): a
     // route out of a unit leaves it from one, so searching from them finds
     // the same distances outside it as from all its cells.
@@ -394,23 +399,18 @@ pub fn unit_exits_with(wave: &Wavefront, units: &RoomUnits, order: &[u32]) -> Ve
         .into_iter()
         .map(|cells| cells.into_iter().filter(|&c| edge(c)).collect())
         .collect();
-    // Each step of the order on its own (in parallel, each search with its
-    // own copy of the wavefront; in the order's order whatever the thread
-    // count).
+    // Each step of the order in turn, on the one wavefront.
     let mut exits: Vec<Option<Cell>> = order
-        .par_windows(2)
-        .map_init(
-            || wave.clone(),
-            |wave, step| {
-                let (here, next) = (step[0], step[1]);
-                let sources = (next as usize)
-                    .checked_sub(1)
-                    .and_then(|i| cells_of.get(i))
-                    .map_or(&[][..], Vec::as_slice);
-                let found = cidt(wave, sources, |c| units.labels[c] == here);
-                found.map(|f| f.first())
-            },
-        )
+        .windows(2)
+        .map(|step| {
+            let (here, next) = (step[0], step[1]);
+            let sources = (next as usize)
+                .checked_sub(1)
+                .and_then(|i| cells_of.get(i))
+                .map_or(&[][..], Vec::as_slice);
+            let found = cidt(wave, sources, |c| units.labels[c] == here);
+            found.map(|f| f.first())
+        })
         .collect();
     exits.push(None);
     exits

@@ -144,45 +144,61 @@ impl Transits {
 
 /// Detour ratios between the blocks `at` (row-major, `n × n`): the
 /// search's distance over the Manhattan distance, `1e6` where no way
-/// exists, 1 where a point has no block or two share one. The distances
+/// exists, 1 where a point has no block or two share one. Points in one
+/// block share its searches: one search per distinct block. The distances
 /// are symmetric (every move of the wavefront goes both ways), so the
-/// search from point `i` fills row and column `i` and stops once it has
-/// reached the points after `i`; the searches run side by side, each task
-/// with its own copy of `wave`.
+/// search from the `k`-th distinct block fills its row and column and
+/// stops once it has reached the blocks after it; the searches run side by
+/// side, each task with its own copy of `wave`.
 fn ratio_table(at: &[Option<Cell>], wave: &Wavefront) -> Vec<f32> {
     let n = at.len();
-    let rows: Vec<Vec<(usize, f32)>> = (0..n)
+    // The distinct blocks in order of first appearance, and each point's.
+    let mut blocks: Vec<Cell> = Vec::new();
+    let mut index = std::collections::HashMap::new();
+    let of: Vec<Option<usize>> = at
+        .iter()
+        .map(|b| {
+            b.map(|b| {
+                *index.entry(b).or_insert_with(|| {
+                    blocks.push(b);
+                    blocks.len() - 1
+                })
+            })
+        })
+        .collect();
+    let m = blocks.len();
+    let rows: Vec<Vec<f32>> = (0..m)
         .into_par_iter()
         .map_init(
             || wave.clone(),
-            |wave, i| {
-                let Some(a) = at[i] else {
-                    return Vec::new();
-                };
-                let later: Vec<Cell> = at[i + 1..].iter().flatten().copied().collect();
-                wave.propagate_until_reached(&[a], &later);
-                let mut row = Vec::new();
-                for (j, b) in at.iter().enumerate().skip(i + 1) {
-                    let Some(b) = *b else { continue };
-                    let manhattan = a.row.abs_diff(b.row) + a.col.abs_diff(b.col);
-                    if manhattan == 0 {
-                        continue;
-                    }
-                    let r = match wave.distance(b) {
-                        Some(d) => (f64::from(d) / manhattan as f64) as f32,
-                        None => 1e6,
-                    };
-                    row.push((j, r));
-                }
-                row
+            |wave, k| {
+                let a = blocks[k];
+                wave.propagate_until_reached(&[a], &blocks[k + 1..]);
+                blocks[k + 1..]
+                    .iter()
+                    .map(|&b| {
+                        let manhattan = a.row.abs_diff(b.row) + a.col.abs_diff(b.col);
+                        match wave.distance(b) {
+                            Some(d) => (f64::from(d) / manhattan as f64) as f32,
+                            None => 1e6,
+                        }
+                    })
+                    .collect()
             },
         )
         .collect();
+    // Ratio between distinct blocks `k < l`.
+    let between = |k: usize, l: usize| rows[k][l - k - 1];
     let mut r = vec![1.0f32; n * n];
-    for (i, row) in rows.into_iter().enumerate() {
-        for (j, v) in row {
-            r[i * n + j] = v;
-            r[j * n + i] = v;
+    for i in 0..n {
+        for j in i + 1..n {
+            if let (Some(k), Some(l)) = (of[i], of[j])
+                && k != l
+            {
+                let v = between(k.min(l), k.max(l));
+                r[i * n + j] = v;
+                r[j * n + i] = v;
+            }
         }
     }
     r

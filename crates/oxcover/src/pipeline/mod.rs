@@ -32,7 +32,9 @@ use oxcover_grid::{Grid, OccupancyGrid, coverable_cells};
 use oxcover_planners::{CoverageProblem, RoomUnits, Start};
 
 use self::region::plan_whole;
-use self::rooms::{PlanRooms, in_several_rooms, min_unit_cells, plan_rooms, units_of};
+use self::rooms::{
+    PlanRooms, TransitWaves, in_several_rooms, min_unit_cells, plan_rooms, units_of,
+};
 use crate::error::Result;
 use crate::targets::{RoomOrder, TargetCells, TargetSummary};
 
@@ -84,10 +86,10 @@ pub fn plan(map: &OccupancyGrid, request: &PlanRequest) -> Result<PlanOutcome> {
     let (prepared, rooms) = rayon::join(
         || -> Result<_> {
             let problem = request.problem_within(&work_map, within)?;
-            let target = targets.required(map, problem.cells())?.map(|t| {
-                let region = target_region(&problem, &t.required);
-                (t, region)
-            });
+            // (Here, while the rooms are segmented beside.)
+            let target = targets
+                .required(map, problem.cells())?
+                .map(|t| prepared_target(&problem, t));
             Ok((problem, target))
         },
         || request.rooms.then(|| PlanRooms::new(&work_map, request)),
@@ -127,14 +129,17 @@ fn clearance_lost(
 /// ([`target_region`]), if the request narrows what to cover.
 fn plan_problem(
     (map, work_map, windowed): (&OccupancyGrid, &OccupancyGrid, bool),
-    (problem, target): (CoverageProblem, Option<(TargetCells, Grid<bool>)>),
+    (problem, target): (
+        CoverageProblem,
+        Option<(TargetCells, Grid<bool>, TransitWaves)>,
+    ),
     rooms: Option<PlanRooms<'_>>,
     blocked_cells: usize,
     request: &PlanRequest,
     t0: Instant,
 ) -> Result<PlanOutcome> {
     let targets = &request.targets;
-    if let Some((target, region)) = target {
+    if let Some((target, region, waves)) = target {
         // The whole map's problem, should the target's plan be compared
         // with the map's (built again where its coverable cells were found
         // in the target's window only).
@@ -144,7 +149,7 @@ fn plan_problem(
         let mut outcome = plan_target(
             &problem,
             whole,
-            (&target, region),
+            (&target, region, waves),
             rooms.as_ref(),
             request,
             t0,
@@ -198,7 +203,7 @@ fn plan_map(
         .filter(|rooms| in_several_rooms(problem.plannable(), &rooms.labels))
         .map(|rooms| units_of(problem, rooms));
     match units.filter(|u| u.count() > 1) {
-        Some(units) => plan_rooms(problem, &units, None, request, t0),
+        Some(units) => plan_rooms(problem, &units, None, request, t0, None),
         None => plan_whole(problem, request, t0),
     }
 }
@@ -239,7 +244,7 @@ fn keep_out_spares_start(
 fn plan_target(
     problem: &CoverageProblem,
     whole: impl FnOnce() -> Result<CoverageProblem>,
-    (target, region): (&TargetCells, Grid<bool>),
+    (target, region, waves): (&TargetCells, Grid<bool>, TransitWaves),
     rooms: Option<&PlanRooms<'_>>,
     request: &PlanRequest,
     t0: Instant,
@@ -258,7 +263,7 @@ fn plan_target(
         _ => None,
     };
     let keep_order = given.is_some();
-    let by_units = plan_rooms(problem, &units, given, request, t0)?;
+    let by_units = plan_rooms(problem, &units, given, request, t0, Some(waves))?;
     // A target of most of the map: its units cost about the map's, and the
     // map's own plan (covering the required cells on the way) may be the
     // faster; the faster is kept (not when the room order is given).
@@ -279,6 +284,17 @@ fn plan_target(
         );
     kept.plan_ms = t0.elapsed().as_secs_f64() * 1e3;
     Ok(kept)
+}
+
+/// A target's cells `t` with where it is planned ([`target_region`]) and
+/// the wavefronts its plan's searches reuse ([`TransitWaves`]).
+fn prepared_target(
+    problem: &CoverageProblem,
+    t: TargetCells,
+) -> (TargetCells, Grid<bool>, TransitWaves) {
+    let region = target_region(problem, &t.required);
+    let waves = TransitWaves::for_target(problem, &region);
+    (t, region, waves)
 }
 
 /// Where a target is planned: the plannable cells within the tool's reach

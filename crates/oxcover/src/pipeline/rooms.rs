@@ -7,6 +7,7 @@
 use std::time::Instant;
 
 use oxcover_decomp::{RoomParams, Rooms, voronoi};
+use oxcover_distance::Wavefront;
 use oxcover_grid::footprint::covered_cells_of;
 use oxcover_grid::{Cell, Grid, OccupancyGrid, Point, Window};
 use oxcover_planners::{
@@ -148,32 +149,64 @@ pub(super) fn min_unit_cells(problem: &CoverageProblem) -> usize {
     ((MIN_UNIT_M2 / (res * res)) as usize).max(4 * block * block)
 }
 
-/// Plans unit by unit in `order` (default: [`oxcover_planners::room_order`]).
+/// The wavefronts a room-by-room plan's searches reuse
+/// ([`CoverageProblem::transit_wavefront`]): one for the exits and the
+/// transits between units, and one for the way from a start outside every
+/// unit to the first. Each costs a pass over the map to build: a target's
+/// are built while the rooms are segmented.
+pub(super) struct TransitWaves {
+    shared: Wavefront,
+    first: Option<Wavefront>,
+}
+
+impl TransitWaves {
+    /// Those of a target of `problem` whose units lie in `region`: the
+    /// second only where the start lies outside `region` (so outside
+    /// every unit).
+    pub(super) fn for_target(problem: &CoverageProblem, region: &Grid<bool>) -> Self {
+        let outside = !region.get(problem.start_cell()).copied().unwrap_or(false);
+        let (shared, first) = rayon::join(
+            || problem.transit_wavefront(),
+            || outside.then(|| problem.transit_wavefront()),
+        );
+        Self { shared, first }
+    }
+}
+
+/// Plans unit by unit in `order` (default: [`oxcover_planners::room_order`]),
+/// with `waves` if built ahead ([`TransitWaves`]).
 pub(super) fn plan_rooms(
     problem: &CoverageProblem,
     units: &RoomUnits,
     order: Option<Vec<u32>>,
     request: &PlanRequest,
     t0: Instant,
+    waves: Option<TransitWaves>,
 ) -> Result<PlanOutcome> {
-    let (order, mut wave) = rayon::join(
+    let (order, (mut wave, first_wave)) = rayon::join(
         || order.unwrap_or_else(|| room_order(problem, units)),
-        || problem.transit_wavefront(),
+        || match waves {
+            Some(w) => (w.shared, w.first),
+            None => (problem.transit_wavefront(), None),
+        },
     );
     let mut here = problem.start_cell();
     // The way from the start to the first unit, when it lies outside it.
     let first = order.first().copied().filter(|&u| units.labels[here] != u);
-    // (Side by side: none needs another.)
+    // (Side by side: none needs another. The exits' searches reuse `wave`,
+    // the first transit has one of its own.)
     let ((exits, claims), mut first_transit) = rayon::join(
         || {
             rayon::join(
-                || unit_exits_with(&wave, units, &order),
+                || unit_exits_with(&mut wave, units, &order),
                 || unit_claims(problem, units),
             )
         },
         || {
-            first
-                .map(|u| problem.transit_reusing(&mut wave.clone(), here, |c| units.labels[c] == u))
+            first.map(|u| {
+                let mut own = first_wave.unwrap_or_else(|| problem.transit_wavefront());
+                problem.transit_reusing(&mut own, here, |c| units.labels[c] == u)
+            })
         },
     );
     let bounds = units.bounds();

@@ -252,10 +252,7 @@ fn a_zone_plans_the_same_with_coverable_cells_in_its_window() {
         let plan = |within| {
             let problem = request.problem_within(&map, within).unwrap();
             let target = request.targets.required(&map, problem.cells()).unwrap();
-            let target = target.map(|t| {
-                let region = target_region(&problem, &t.required);
-                (t, region)
-            });
+            let target = target.map(|t| prepared_target(&problem, t));
             let rooms = Some(rooms::PlanRooms::new(&map, &request));
             let maps = (&map, &map, within.is_some());
             plan_problem(maps, (problem, target), rooms, 0, &request, Instant::now()).unwrap()
