@@ -17,7 +17,9 @@
 //! costs the zone, not the map.
 //!
 //! Run: `cargo bench -p oxcover --bench efficiency`; `cargo xtask bench
-//! --only efficiency` runs it and writes the figures into `docs/benchmarks.md`.
+//! --only efficiency` runs it, group `efficiency_zone` four times more,
+//! and writes the figures into `docs/benchmarks.md` (the zone's ratio as
+//! the median of the five runs).
 
 #![expect(
     missing_docs,
