@@ -44,6 +44,21 @@ impl Layer<'_> {
     }
 }
 
+/// The cells of `row` whose four neighbours are open, with `up` and `down`
+/// the rows above and below (all of one length; the edge columns never
+/// count): columns `1..w-1` as selects over equal slices, which vectorise.
+fn interior_in(up: &[bool], row: &[bool], down: &[bool]) -> usize {
+    let inner = row.len().saturating_sub(2);
+    if inner == 0 {
+        return 0;
+    }
+    let (u, d) = (&up[1..=inner], &down[1..=inner]);
+    let (west, mid, east) = (&row[..inner], &row[1..=inner], &row[2..inner + 2]);
+    (0..inner)
+        .map(|i| u32::from(u[i] & d[i] & west[i] & mid[i] & east[i]))
+        .sum::<u32>() as usize
+}
+
 /// A reusable Lee wavefront over a fixed grid.
 #[derive(Clone, Debug)]
 pub struct Wavefront {
@@ -70,41 +85,30 @@ impl Wavefront {
         let (w, h) = (passable.width(), passable.height());
         let stride = w + 2;
         // One spare slot past the padded grid: the branch-free BFS stores its
-        // "no new cell" writes there.
-        let mut labels = vec![BLOCKED; stride * (h + 2) + 1];
-        // Row by row, as selects and sums (they vectorise).
+        // "no new cell" writes there. Written in one pass, row by row: the
+        // padding row above and each row's padding either side.
+        let len = stride * (h + 2) + 1;
+        let mut labels = Vec::with_capacity(len);
+        labels.resize(stride + 1, BLOCKED);
         let mut open = 0;
-        for r in 0..h {
-            let base = (r + 1) * stride + 1;
-            let row = passable.row(r);
-            for (l, &p) in labels[base..base + w].iter_mut().zip(row) {
-                *l = if p { UNSEEN } else { BLOCKED };
-            }
-            open += row.iter().map(|&p| usize::from(p)).sum::<usize>();
-        }
         // Share of open cells whose four neighbours are all open: near 1 on
         // open floors, near 0 in mazes (see `flood`).
         let mut interior = 0usize;
         let none = vec![false; w];
         for r in 0..h {
             let row = passable.row(r);
+            labels.extend(row.iter().map(|&p| if p { UNSEEN } else { BLOCKED }));
+            labels.extend([BLOCKED; 2]);
+            open += row.iter().map(|&p| usize::from(p)).sum::<usize>();
             let up = if r > 0 { passable.row(r - 1) } else { &none };
             let down = if r + 1 < h {
                 passable.row(r + 1)
             } else {
                 &none
             };
-            let middle = row
-                .iter()
-                .zip(up)
-                .zip(down)
-                .skip(1)
-                .take(w.saturating_sub(2));
-            interior += middle
-                .zip(row.windows(3))
-                .map(|(((_, &u), &d), lr)| usize::from(u & d & lr[0] & lr[1] & lr[2]))
-                .sum::<usize>();
+            interior += interior_in(up, row, down);
         }
+        labels.resize(len, BLOCKED);
         let branch_free = (interior as f64) < BRANCHY_ABOVE * open as f64;
         Self {
             width: w,
@@ -585,6 +589,15 @@ mod tests {
                             && free.neighbours4(c).all(|(_, n)| free[n])
                     })
                     .count();
+                let none = vec![false; w];
+                let rows: usize = (0..h)
+                    .map(|r| {
+                        let up = if r > 0 { free.row(r - 1) } else { &none };
+                        let down = if r + 1 < h { free.row(r + 1) } else { &none };
+                        interior_in(up, free.row(r), down)
+                    })
+                    .sum();
+                assert_eq!(rows, interior, "{w}x{h} at {density}");
                 let wf = Wavefront::new(&free);
                 assert_eq!(wf.open, open);
                 assert_eq!(
