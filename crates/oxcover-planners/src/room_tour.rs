@@ -183,6 +183,22 @@ impl RoomUnits {
         ))
     }
 
+    /// The first cell of unit `u` in row-major order within its cells'
+    /// bounding box `bounds` (as [`RoomUnits::bounds`] gives it), if it has
+    /// one.
+    #[must_use]
+    pub fn first_cell(
+        &self,
+        u: u32,
+        (r0, r1, c0, c1): (usize, usize, usize, usize),
+    ) -> Option<Cell> {
+        (r0..=r1).find_map(|r| {
+            (c0..=c1)
+                .map(|c| Cell::new(r, c))
+                .find(|&c| self.labels.get(c) == Some(&u))
+        })
+    }
+
     /// Each unit's cells in row-major order (`cells_by_unit()[u - 1]` for
     /// unit `u`), read row by row within the units' bounding box.
     #[must_use]
@@ -552,7 +568,34 @@ mod tests {
             let by_unit: Vec<Vec<Cell>> = (1..=u.count() as u32)
                 .map(|l| unit_cells.iter().copied().filter(|&c| u.labels[c] == l).collect())
                 .collect();
-            proptest::prop_assert_eq!(u.cells_by_unit(), by_unit);
+            proptest::prop_assert_eq!(&u.cells_by_unit(), &by_unit);
+            // A unit's problem from its first cell, moved to another of
+            // its cells, is its problem from there; a cell the first does
+            // not reach is refused.
+            let bounds = u.bounds();
+            for (l, own) in (1..=u.count() as u32).zip(&by_unit) {
+                let b = bounds[l as usize - 1];
+                proptest::prop_assert_eq!(u.first_cell(l, b), own.first().copied());
+                let (Some(&first), Some(&last)) = (own.first(), own.last()) else {
+                    continue;
+                };
+                let from_first = u.restricted(&p, l, b, first, &claims).unwrap();
+                for c in [own[own.len() / 2], last] {
+                    let direct = u.restricted(&p, l, b, c, &claims).unwrap();
+                    let local = from_first.from_map_cell(c).unwrap();
+                    match from_first.clone().with_start_cell(local) {
+                        Ok(moved) => {
+                            proptest::prop_assert_eq!(moved.plannable(), direct.plannable());
+                            proptest::prop_assert_eq!(&moved.cells().coverable, &direct.cells().coverable);
+                            proptest::prop_assert_eq!(&moved.cells().admissible, &direct.cells().admissible);
+                            proptest::prop_assert_eq!(moved.coarse(), direct.coarse());
+                            proptest::prop_assert_eq!(moved.start_cell(), direct.start_cell());
+                            proptest::prop_assert_eq!(moved.offset(), direct.offset());
+                        }
+                        Err(_) => proptest::prop_assert!(!from_first.plannable()[local]),
+                    }
+                }
+            }
             // Exits: one search over every plannable cell per step.
             let order: Vec<u32> = (1..=u.count() as u32).collect();
             let mut wave = Wavefront::new(p.plannable());

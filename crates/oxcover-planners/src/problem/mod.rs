@@ -187,6 +187,26 @@ impl CoverageProblem {
         Ok(self)
     }
 
+    /// This problem started at its plannable cell `start` instead. Its
+    /// plannable cells are those connected to its start, the same from
+    /// any of them, and so are its coverable cells and coverage grid: only
+    /// the start moves.
+    ///
+    /// # Errors
+    /// [`Error::BadParameter`] when `start` is not one of its plannable
+    /// cells, or its start was asked for as a position.
+    pub fn with_start_cell(mut self, start: Cell) -> Result<Self> {
+        if !self.plannable().is_set(start) || self.start_point.is_some() {
+            return Err(Error::BadParameter {
+                name: "start",
+                value: format!("{start:?}"),
+                expected: "a plannable cell of a problem started at a cell",
+            });
+        }
+        self.cells.start = start;
+        Ok(self)
+    }
+
     /// The speeds planners score their choices with.
     #[must_use]
     pub fn time(&self) -> TimeModel {

@@ -220,13 +220,24 @@ pub(super) fn plan_rooms(
     for (i, &u) in order.iter().enumerate() {
         // The start may lie outside every unit (a coverage target).
         let transit = i > 0 || units.labels[here] != u;
-        let (entry, prefix) = if !transit {
-            (here, start_prefix(problem))
+        let b = bounds[u as usize - 1];
+        let (entry, prefix, ahead) = if !transit {
+            (here, start_prefix(problem), None)
         } else {
-            let t = match first_transit.take() {
-                Some(t) => t?,
-                None => problem.transit_reusing(&mut wave, here, |c| units.labels[c] == u)?,
-            };
+            // The unit's problem from its first cell while the way into it
+            // is searched, moved to where that way ends below.
+            let (t, ahead) = rayon::join(
+                || match first_transit.take() {
+                    Some(t) => t,
+                    None => problem.transit_reusing(&mut wave, here, |c| units.labels[c] == u),
+                },
+                || {
+                    units
+                        .first_cell(u, b)
+                        .and_then(|c| units.restricted(problem, u, b, c, &claims).ok())
+                },
+            );
+            let t = t?;
             let entry = t.cells.last().copied().unwrap_or(here);
             if i == 0 {
                 cells.push(here);
@@ -237,10 +248,18 @@ pub(super) fn plan_rooms(
                 prefix.splice(0..0, start_prefix(problem));
             }
             prefix.pop();
-            (entry, prefix)
+            (entry, prefix, ahead)
         };
         let prefix_len = prefix.len();
-        let sub = units.restricted(problem, u, bounds[u as usize - 1], entry, &claims)?;
+        // (From any cell connected to the entry, the same problem.)
+        let moved = ahead.and_then(|p| {
+            let local = p.from_map_cell(entry)?;
+            p.with_start_cell(local).ok()
+        });
+        let sub = match moved {
+            Some(p) => p,
+            None => units.restricted(problem, u, b, entry, &claims)?,
+        };
         let exit = exits[i].and_then(|c| sub.from_map_cell(c));
         let mut region = plan_region(&sub, request, prefix, exit, Some(plan_cells))?;
         for c in &mut region.cells {
