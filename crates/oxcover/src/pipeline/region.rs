@@ -5,7 +5,7 @@
 use std::time::Instant;
 
 use oxcover_grid::footprint::covered_cells;
-use oxcover_grid::{Cell, Grid, MapFrame, Point};
+use oxcover_grid::{Cell, Coverability, Grid, MapFrame, Point};
 use oxcover_planners::{BoundaryRoute, CoverageProblem, PlanOutput, RoomUnits};
 
 use super::request::{PlanOutcome, PlanRequest, RoomStretch};
@@ -193,6 +193,7 @@ pub(super) fn plan_whole(
     let known = KnownCoverage {
         raws: region.raw_covered,
         path: covered,
+        cells: None,
     };
     finish(
         problem,
@@ -254,6 +255,9 @@ pub(super) struct KnownCoverage {
     pub(super) raws: Option<Grid<bool>>,
     /// The cells the final path covers.
     pub(super) path: Option<Grid<bool>>,
+    /// A copy of the problem's cells for the evaluation to keep, made
+    /// ahead where a core had time.
+    pub(super) cells: Option<Coverability>,
 }
 
 /// Scores a finished plan.
@@ -280,7 +284,7 @@ pub(super) fn finish(
     );
     let evaluation = evaluate_covered(
         frame,
-        problem.cells().clone(),
+        known.cells.unwrap_or_else(|| problem.cells().clone()),
         &points,
         covered,
         &request.time,

@@ -111,6 +111,7 @@ pub(super) fn covering_part(
     let known = KnownCoverage {
         raws: None,
         path: None,
+        cells: None,
     };
     let outcome = finish(
         problem,

@@ -296,11 +296,16 @@ pub(super) fn plan_rooms(
     }
     // The cells the units' own paths cover (before their boundary
     // passes), found while the whole path is tightened.
-    let ((points, stretches, covered, in_pass), raw_covered) = rayon::join(
+    // (And the copy of the cells the evaluation keeps.)
+    let ((points, stretches, covered, in_pass), (raw_covered, cells_copy)) = rayon::join(
         || tighten_plan(problem, Some(units), points, stretches, in_pass),
         || {
             let pieces: Vec<&[Point]> = raws.iter().map(Vec::as_slice).collect();
-            covered_cells_of(problem.frame(), &pieces, problem.robot().tool_radius)
+            let tool = problem.robot().tool_radius;
+            (
+                covered_cells_of(problem.frame(), &pieces, tool),
+                problem.cells().clone(),
+            )
         },
     );
     let boundary_length_m = pass_length(&points, &in_pass);
@@ -310,6 +315,7 @@ pub(super) fn plan_rooms(
     let known = KnownCoverage {
         raws: Some(raw_covered),
         path: covered,
+        cells: Some(cells_copy),
     };
     finish(
         problem,
