@@ -287,7 +287,9 @@ fn plan_target(
 }
 
 /// A target's cells `t` with where it is planned ([`target_region`]) and
-/// the wavefronts its plan's searches reuse ([`TransitWaves`]).
+/// the wavefronts its plan's searches reuse ([`TransitWaves`]; built on
+/// `problem` before `with_required`, which narrows its coverable cells
+/// only: the same plannable cells, the same wavefronts).
 fn prepared_target(
     problem: &CoverageProblem,
     t: TargetCells,

@@ -261,14 +261,7 @@ impl Targets {
             Some(chosen) => {
                 let labels = room_labels(map)?;
                 let n = labels.as_slice().iter().copied().max().unwrap_or(0);
-                if let Some(bad) = chosen.iter().find(|&&l| l == 0 || l > n) {
-                    return Err(target(
-                        "--rooms-only",
-                        &format!(
-                            "no room {bad} on this map: the rooms are 1 to {n} (`oxcover segment` lists them)"
-                        ),
-                    ));
-                }
+                check_rooms(chosen, n)?;
                 required = required.zip_map(&labels, |&r, l| r && chosen.contains(l));
                 Some(labels)
             }
@@ -312,6 +305,20 @@ fn done_on_map(frame: &oxcover_grid::MapFrame, done: &[Point]) -> Result<()> {
         Some((i, p)) => Err(target(
             "--done",
             &format!("point {} ({}, {}) lies outside the map", i + 1, p.x, p.y),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The `chosen` room labels refused unless each is one of the `n` rooms of
+/// the map, by the first that is not.
+pub(crate) fn check_rooms(chosen: &[u32], n: u32) -> Result<()> {
+    match chosen.iter().find(|&&l| l == 0 || l > n) {
+        Some(bad) => Err(target(
+            "--rooms-only",
+            &format!(
+                "no room {bad} on this map: the rooms are 1 to {n} (`oxcover segment` lists them)"
+            ),
         )),
         None => Ok(()),
     }

@@ -74,11 +74,14 @@ fn hatch(polygon: &Polygon<f64>, rgb: [u8; 3], overlay: &mut Overlay) {
 /// picture writes it (so `map` is segmented then, as the target is).
 ///
 /// # Errors
-/// As [`segment`] (not expected: its defaults are valid).
+/// [`crate::Error::Target`] for a chosen room the map does not have (as
+/// the target's cells refuse it); as [`segment`].
 pub fn target_overlay(targets: &Targets, map: &OccupancyGrid) -> Result<Overlay> {
     let mut o = Overlay::default();
     if let Some(chosen) = &targets.rooms_only {
         let rooms = segment(map, &SegmentOptions::default())?;
+        let n = rooms.labels.as_slice().iter().copied().max().unwrap_or(0);
+        super::check_rooms(chosen, n)?;
         o.texts = room_anchors(map, &rooms)
             .into_iter()
             .filter(|(l, _)| chosen.contains(l))
@@ -176,5 +179,12 @@ mod tests {
         assert_eq!(o.texts, want);
         let none = target_overlay(&Targets::default(), &map).expect("overlay");
         assert_eq!(none, Overlay::default());
+        // A room the map does not have is refused, as by the target's cells.
+        let missing = Targets {
+            rooms_only: Some(vec![1, 99]),
+            ..Targets::default()
+        };
+        let e = target_overlay(&missing, &map).unwrap_err().to_string();
+        assert!(e.contains("no room 99"), "{e}");
     }
 }

@@ -145,4 +145,21 @@ fn bad_targets_exit_2_with_one_line_and_write_nothing() {
             assert!(!out_csv.exists(), "{args:?} wrote its output");
         }
     }
+    // A picture of the map alone labels the chosen rooms: a room the map
+    // does not have is refused there too, nothing written.
+    let png = d.join("rooms.png");
+    let args = [
+        "render",
+        map.as_str(),
+        "--rooms-only",
+        "2,99",
+        "--out",
+        png.to_str().unwrap(),
+    ];
+    let out = Command::new(bin()).args(args).output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr:?}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr:?}");
+    assert!(stderr.contains("no room 99 on this map"), "{stderr:?}");
+    assert!(!png.exists());
 }
