@@ -341,7 +341,7 @@ pub fn unit_claims(problem: &CoverageProblem, units: &RoomUnits) -> Grid<u32> {
         .map(|(dr, dc)| (dr, dc, dr * dr + dc * dc))
         .filter(|&(_, _, d2)| d2 as f64 <= tool * tool)
         .collect();
-    let near = Grid::from_fn(window.3 - window.2, window.1 - window.0, |at: Cell| {
+    let near = Grid::par_from_fn(window.3 - window.2, window.1 - window.0, |at: Cell| {
         let c = Cell::new(at.row + window.0, at.col + window.2);
         if !coverable[c] {
             return 0;
