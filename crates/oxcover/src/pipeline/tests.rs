@@ -177,9 +177,9 @@ fn a_small_zone_segments_its_neighbourhood() {
         0.05,
         Point::origin(),
     );
-    let zone = |x0: f64, x1: f64| {
+    let zone = |(x0, x1): (f64, f64), (y0, y1): (f64, f64)| {
         geo::Polygon::new(
-            geo::LineString::from(vec![(x0, 5.0), (x1, 5.0), (x1, 8.0), (x0, 8.0), (x0, 5.0)]),
+            geo::LineString::from(vec![(x0, y0), (x1, y0), (x1, y1), (x0, y1), (x0, y0)]),
             Vec::new(),
         )
     };
@@ -189,21 +189,22 @@ fn a_small_zone_segments_its_neighbourhood() {
             .robot(DiscRobot::new(0.1, 0.1).unwrap())
             .targets(targets)
     };
-    let zoned = |x1: f64| Targets {
+    let zoned = |x: (f64, f64), y: (f64, f64)| Targets {
         zones: Some(Areas {
-            polygons: vec![zone(8.0, x1)],
+            polygons: vec![zone(x, y)],
             lines: Vec::new(),
         }),
         ..Targets::default()
     };
     let whole = rooms::PlanRooms::new(&map, &request(Targets::default()));
     assert!(whole.local().is_none());
-    let small = rooms::PlanRooms::new(&map, &request(zoned(11.0)));
+    let small = rooms::PlanRooms::new(&map, &request(zoned((8.0, 11.0), (5.0, 8.0))));
     let (r0, r1, c0, c1) = small.local().expect("a window");
     // The zone's box (columns 160 to 220, a cell more round) widened by
-    // the margin and the tool (82 cells, give or take rounding).
-    assert!((159 - 83..=159 - 82).contains(&c0), "{c0}");
-    assert!((221 + 82..=221 + 83).contains(&c1), "{c1}");
+    // the margin and the tool (in cells, give or take rounding).
+    let m = ((rooms::LOCAL_ROOMS_MARGIN_M + 0.1) / 0.05).round() as usize;
+    assert!((159 - m - 1..=159 - m).contains(&c0), "{c0}");
+    assert!((221 + m..=221 + m + 1).contains(&c1), "{c1}");
     assert!(r0 > 0 && r1 < 300);
     for c in small.rooms.labels.cells() {
         if !((r0..r1).contains(&c.row) && (c0..c1).contains(&c.col)) {
@@ -212,9 +213,9 @@ fn a_small_zone_segments_its_neighbourhood() {
     }
     assert!(small.rooms.labels.as_slice().iter().any(|&l| l > 0));
     assert_eq!(*small.whole(), *whole.whole());
-    // A zone most of the map wide: the whole map's rooms.
+    // A zone over most of the map: the whole map's rooms.
     assert!(
-        rooms::PlanRooms::new(&map, &request(zoned(19.5)))
+        rooms::PlanRooms::new(&map, &request(zoned((1.0, 19.0), (1.0, 14.0))))
             .local()
             .is_none()
     );
