@@ -528,6 +528,27 @@ impl Grid<bool> {
         whole + runs.remainder().iter().filter(|&&b| b).count()
     }
 
+    /// Number of cells `true` in both grids (cell for cell, by index: grids
+    /// of one size), counted as [`Self::count_true`] counts.
+    #[must_use]
+    pub fn count_both(&self, other: &Self) -> usize {
+        let (a, b) = (self.data.as_slice(), other.data.as_slice());
+        let n = a.len().min(b.len());
+        let (a, b) = (&a[..n], &b[..n]);
+        let both = |a: &[bool], b: &[bool]| {
+            a.iter()
+                .zip(b)
+                .fold(0u8, |n, (&x, &y)| n + u8::from(x & y))
+        };
+        let runs = n / 255 * 255;
+        let whole: usize = a[..runs]
+            .chunks_exact(255)
+            .zip(b[..runs].chunks_exact(255))
+            .map(|(x, y)| usize::from(both(x, y)))
+            .sum();
+        whole + usize::from(both(&a[runs..], &b[runs..]))
+    }
+
     /// Cells that are `true`, row-major.
     pub fn true_cells(&self) -> impl Iterator<Item = Cell> + '_ {
         let w = self.width;
@@ -579,7 +600,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn count_true_counts_every_true_cell() {
+    fn count_true_and_count_both_count_every_true_cell() {
         // Sizes round the 255-cell runs, all true (a run's byte sum at its
         // largest) and scattered.
         for n in [0usize, 1, 254, 255, 256, 510, 511, 1000] {
@@ -588,6 +609,15 @@ mod tests {
             let some = Grid::from_fn(n, 3, |c: Cell| (c.col * 7 + c.row) % 3 == 0);
             let plain = some.as_slice().iter().filter(|&&b| b).count();
             assert_eq!(some.count_true(), plain, "{n}");
+            assert_eq!(all.count_both(&all), n);
+            let other = Grid::from_fn(n, 3, |c: Cell| (c.col + 2 * c.row) % 5 < 2);
+            let plain = some
+                .as_slice()
+                .iter()
+                .zip(other.as_slice())
+                .filter(|&(&a, &b)| a && b)
+                .count();
+            assert_eq!(some.count_both(&other), plain, "{n}");
         }
     }
 

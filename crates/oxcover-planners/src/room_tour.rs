@@ -120,9 +120,14 @@ impl RoomUnits {
     #[must_use]
     pub fn bounds(&self) -> Vec<(usize, usize, usize, usize)> {
         let mut b = vec![(usize::MAX, 0, usize::MAX, 0); self.count()];
-        let w = self.labels.width().max(1);
-        for (r, row) in self.labels.as_slice().chunks(w).enumerate() {
-            for (c, &l) in row.iter().enumerate() {
+        // Read within the units' bounding box only (a coverage target's
+        // units may hold a small part of the map).
+        let Some((r0, r1, c0, c1)) = self.labels.bounding_box(|&l| l != 0) else {
+            return b;
+        };
+        let w = self.labels.width();
+        for r in r0..r1 {
+            for (c, &l) in (c0..c1).zip(&self.labels.as_slice()[r * w + c0..r * w + c1]) {
                 if let Some(x) = (l as usize).checked_sub(1).and_then(|i| b.get_mut(i)) {
                     *x = (x.0.min(r), x.1.max(r), x.2.min(c), x.3.max(c));
                 }
@@ -572,7 +577,17 @@ mod tests {
             // A unit's problem from its first cell, moved to another of
             // its cells, is its problem from there; a cell the first does
             // not reach is refused.
+            // Each unit's bounds, as a scan of its cells.
             let bounds = u.bounds();
+            let scanned: Vec<(usize, usize, usize, usize)> = by_unit
+                .iter()
+                .map(|cells| {
+                    cells.iter().fold((usize::MAX, 0, usize::MAX, 0), |x, c| {
+                        (x.0.min(c.row), x.1.max(c.row), x.2.min(c.col), x.3.max(c.col))
+                    })
+                })
+                .collect();
+            proptest::prop_assert_eq!(&bounds, &scanned);
             for (l, own) in (1..=u.count() as u32).zip(&by_unit) {
                 let b = bounds[l as usize - 1];
                 proptest::prop_assert_eq!(u.first_cell(l, b), own.first().copied());

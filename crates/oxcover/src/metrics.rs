@@ -158,12 +158,7 @@ pub(crate) fn evaluate_covered(
         }
     });
     let coverable_cells = problem.coverable_count();
-    let covered_cells = covered
-        .as_slice()
-        .iter()
-        .zip(problem.coverable.as_slice())
-        .filter(|(a, b)| **a && **b)
-        .count();
+    let covered_cells = covered.count_both(&problem.coverable);
     let shape = PathShape::of(points, res);
     let covered_area = covered_cells as f64 * res * res;
     let est_time_s = params.time(shape.length_m, shape.rotation_rad);
@@ -214,12 +209,7 @@ pub(crate) fn covered_fraction(problem: &Coverability, covered: &Grid<bool>) -> 
     if coverable == 0 {
         return 0.0;
     }
-    let hit = covered
-        .as_slice()
-        .iter()
-        .zip(problem.coverable.as_slice())
-        .filter(|(a, b)| **a && **b)
-        .count();
+    let hit = covered.count_both(&problem.coverable);
     hit as f64 / coverable as f64
 }
 

@@ -85,7 +85,8 @@ impl<'m> PlanRooms<'m> {
         });
         match window {
             Some(win) => {
-                let part = voronoi(&map.free_mask().crop(win), &RoomParams::indoor(res));
+                let free = map.cells().crop(win).map(|o| o.is_free());
+                let part = voronoi(&free, &RoomParams::indoor(res));
                 let mut labels = Grid::new(w, h, 0);
                 labels.paste(Cell::new(win.0, win.2), &part.labels);
                 let shift = |c: Cell| Cell::new(c.row + win.0, c.col + win.2);
