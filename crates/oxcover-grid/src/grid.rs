@@ -535,11 +535,8 @@ impl Grid<bool> {
         let (a, b) = (self.data.as_slice(), other.data.as_slice());
         let n = a.len().min(b.len());
         let (a, b) = (&a[..n], &b[..n]);
-        let both = |a: &[bool], b: &[bool]| {
-            a.iter()
-                .zip(b)
-                .fold(0u8, |n, (&x, &y)| n + u8::from(x & y))
-        };
+        let both =
+            |a: &[bool], b: &[bool]| a.iter().zip(b).fold(0u8, |n, (&x, &y)| n + u8::from(x & y));
         let runs = n / 255 * 255;
         let whole: usize = a[..runs]
             .chunks_exact(255)

@@ -19,7 +19,7 @@ use rayon::prelude::*;
 use oxcover_decomp::merge_small_regions;
 use oxcover_distance::{Wavefront, cidt};
 use oxcover_grid::grid::nearest_first;
-use oxcover_grid::{Cell, Components, Dir4, Grid, components4_by_class};
+use oxcover_grid::{Cell, Components, Dir4, Grid, Window, components4_by_class};
 
 use crate::error::{Error, Result};
 use crate::problem::CoverageProblem;
@@ -335,11 +335,20 @@ pub fn unit_claims(problem: &CoverageProblem, units: &RoomUnits) -> Grid<u32> {
     // Beyond the units' cells' bounding box widened by `k` no cell has a
     // unit's cell within reach (a coverage target's units may hold a small
     // part of the map): every unit may cover those.
-    let mut claims = coverable.map(|&c| if c { ANY_UNIT } else { 0 });
+    let every = || coverable.map(|&c| if c { ANY_UNIT } else { 0 });
     let Some((r0, r1, c0, c1)) = labels.bounding_box(|&l| l != 0) else {
-        return claims;
+        return every();
     };
     let window = coverable.widen((r0, r1, c0, c1), k_cells);
+    // Where every coverable cell lies in the window (a target's do), the
+    // cells beyond it are all 0: no pass over the map to write them.
+    let within = |(a0, a1, b0, b1): Window| {
+        window.0 <= a0 && a1 <= window.1 && window.2 <= b0 && b1 <= window.3
+    };
+    let mut claims = match coverable.bounding_box(|&c| c) {
+        Some(b) if within(b) => Grid::new(coverable.width(), coverable.height(), 0),
+        _ => every(),
+    };
     // The offsets within reach, nearest first.
     let offsets: Vec<(isize, isize, isize)> = nearest_first(k_cells)
         .into_iter()
@@ -557,7 +566,7 @@ mod tests {
             let claims = unit_claims(&p, &u);
             let reach = p.tool_cells() + oxcover_grid::TOLERANCE_CELLS;
             let unit_cells: Vec<Cell> = u.labels.cells().filter(|&c| u.labels[c] != 0).collect();
-            for c in p.cells().coverable.true_cells() {
+            let claim = |c: Cell| {
                 let nearest = unit_cells
                     .iter()
                     .map(|&q| {
@@ -566,7 +575,20 @@ mod tests {
                     })
                     .filter(|&(d2, _)| d2 <= reach * reach)
                     .min_by(|a, b| a.partial_cmp(b).unwrap());
-                let want = if u.labels[c] != 0 { u.labels[c] } else { nearest.map_or(ANY_UNIT, |n| n.1) };
+                if u.labels[c] != 0 { u.labels[c] } else { nearest.map_or(ANY_UNIT, |n| n.1) }
+            };
+            for c in p.cells().coverable.true_cells() {
+                proptest::prop_assert_eq!(claims[c], claim(c), "{:?}", c);
+            }
+            // A target's (its coverable cells all within reach of its
+            // units): every cell's claim, 0 off the coverable cells.
+            let required = Grid::from_fn(150, 110, |c: Cell| {
+                p.cells().coverable[c] && claim(c) != ANY_UNIT
+            });
+            let target = p.clone().with_required(&required).unwrap();
+            let claims = unit_claims(&target, &u);
+            for c in required.cells() {
+                let want = if required[c] { claim(c) } else { 0 };
                 proptest::prop_assert_eq!(claims[c], want, "{:?}", c);
             }
             // Each unit's cells, row by row, as a scan of every cell.
