@@ -20,7 +20,7 @@ fn mask(rows: &[&str]) -> Grid<bool> {
 /// [`tighten_from`] moving every vertex: the path and the number of
 /// vertices removed or moved.
 fn tighten(points: &[GridPoint], d: &Detours<'_>, count: Grid<u16>) -> (Vec<GridPoint>, usize) {
-    let (points, _, changes) = tighten_from(points, d, count, 0, None);
+    let (points, _, changes) = tighten_from(points, d, count, 0, None, || ()).0;
     (points, changes)
 }
 
@@ -186,7 +186,7 @@ fn a_zone_keeps_a_vertex_in_its_room() {
     let path = bent_at(3.5);
     let d = reach_one(&plannable, &coverable, 2.0);
     let room_of = |p: GridPoint| labels[cell_of(&labels, p).unwrap()];
-    let (moved, kept, _) = tighten_from(&path, &d, reach_counts(&path, &d), 0, None);
+    let (moved, kept, _) = tighten_from(&path, &d, reach_counts(&path, &d), 0, None, || ()).0;
     assert_eq!(kept, vec![0, 1, 2]);
     assert_eq!(room_of(moved[1]), 1, "{moved:?}");
     let of_vertex = [0, 2, 0];
@@ -194,7 +194,8 @@ fn a_zone_keeps_a_vertex_in_its_room() {
         labels: &labels,
         of_vertex: &of_vertex,
     };
-    let (zoned, kept, _) = tighten_from(&path, &d, reach_counts(&path, &d), 0, Some(&zone));
+    let (zoned, kept, _) =
+        tighten_from(&path, &d, reach_counts(&path, &d), 0, Some(&zone), || ()).0;
     assert_eq!(kept, vec![0, 1, 2]);
     assert_eq!(room_of(zoned[1]), 2, "{zoned:?}");
     // Still moved up as far as its room allows, and faster than before.
@@ -229,7 +230,7 @@ fn a_tightening_pass_by_pass_is_tighten_from() {
         })
         .collect();
     let d = reach_one(&plannable, &coverable, 2.0);
-    let whole = tighten_from(&path, &d, reach_counts(&path, &d), 0, None);
+    let whole = tighten_from(&path, &d, reach_counts(&path, &d), 0, None, || ()).0;
     let mut t = Tightening::new(&path, reach_counts(&path, &d), 0);
     let mut passes = 0;
     while t.pass(&d, None) {

@@ -71,17 +71,22 @@ impl Zone<'_> {
 /// requires. `count` is how many segments of `points` reach each cell, as
 /// [`super::insert_detours`] or [`super::reach_counts`] returns it. Returns the new
 /// path, the index in `points` of each vertex kept (in order) and the
-/// number of vertices removed or moved.
-pub(crate) fn tighten_from(
+/// number of vertices removed or moved; and the result of `beside`, run
+/// in parallel with the passes after the first (the first looks at every
+/// vertex, in parallel where there are many; the later ones at the few
+/// next to a change).
+pub(crate) fn tighten_from<R: Send>(
     points: &[GridPoint],
     d: &Detours<'_>,
     count: Grid<u16>,
     first: usize,
     zone: Option<&Zone<'_>>,
-) -> (Vec<GridPoint>, Vec<usize>, usize) {
+    beside: impl FnOnce() -> R + Send,
+) -> ((Vec<GridPoint>, Vec<usize>, usize), R) {
     let mut t = Tightening::new(points, count, first);
-    while t.pass(d, zone) {}
-    t.finish()
+    t.pass(d, zone);
+    let ((), beside) = rayon::join(|| while t.pass(d, zone) {}, beside);
+    (t.finish(), beside)
 }
 
 /// A [`tighten_from`] in progress, pass by pass (so that a caller can

@@ -560,8 +560,22 @@ impl CoverageProblem {
         first: usize,
         zones: Option<(&Grid<u32>, &[u32])>,
     ) -> (Vec<Point>, Vec<usize>) {
+        self.tighten_within_beside(points, first, zones, || ()).0
+    }
+
+    /// [`Self::tighten_within`], running `beside` while it tightens: in
+    /// parallel with its passes after the first (the first looks at every
+    /// waypoint, in parallel where there are many; the later ones at the
+    /// few next to a change). The same path, and `beside`'s result.
+    pub fn tighten_within_beside<R: Send>(
+        &self,
+        points: &[Point],
+        first: usize,
+        zones: Option<(&Grid<u32>, &[u32])>,
+        beside: impl FnOnce() -> R + Send,
+    ) -> ((Vec<Point>, Vec<usize>), R) {
         if first + 1 >= points.len() {
-            return (points.to_vec(), (0..points.len()).collect());
+            return ((points.to_vec(), (0..points.len()).collect()), beside());
         }
         let frame = &self.frame;
         let grid = metres_to_grid(frame, points);
@@ -581,8 +595,9 @@ impl CoverageProblem {
         };
         let count = reach_counts(&grid, &d);
         let zone = zones.map(|(labels, of_vertex)| Zone { labels, of_vertex });
-        let (tight, kept, _) = tighten_from(&grid, &d, count, first, zone.as_ref());
-        (grid_to_metres(frame, &tight), kept)
+        let ((tight, kept, _), beside) =
+            tighten_from(&grid, &d, count, first, zone.as_ref(), beside);
+        ((grid_to_metres(frame, &tight), kept), beside)
     }
 
     /// [`Self::boundary_tour`] ending towards the plannable cell `exit`

@@ -85,6 +85,10 @@ proptest::proptest! {
         let path = walk(&p, &steps);
         let first = first.min(path.len());
         let tight = p.tighten_from(&path, first);
+        // With work beside it, the same path and that work's result.
+        let (beside, n) = p.tighten_within_beside(&path, first, None, || path.len());
+        proptest::prop_assert_eq!(&beside.0, &tight);
+        proptest::prop_assert_eq!(n, path.len());
         // The fixed part stays, and the end too.
         proptest::prop_assert_eq!(&tight[..first], &path[..first]);
         proptest::prop_assert_eq!(tight.last(), path.last());

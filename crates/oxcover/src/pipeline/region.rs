@@ -177,7 +177,7 @@ pub(super) fn plan_whole(
     let region = plan_region(problem, request, start_prefix(problem), None, None)?;
     let in_pass = pass_flags(&region);
     let (points, _, covered, in_pass) = if request.rooms {
-        tighten_plan(problem, None, region.points, Vec::new(), in_pass)
+        tighten_plan(problem, None, region.points, (Vec::new(), in_pass), || ()).0
     } else {
         (region.points, Vec::new(), None, in_pass)
     };
@@ -307,6 +307,10 @@ pub(super) fn finish(
     })
 }
 
+/// A plan's waypoints, its room stretches, the cells it covers (where
+/// known) and which waypoints belong to a boundary pass.
+pub(super) type TightPlan = (Vec<Point>, Vec<RoomStretch>, Option<Grid<bool>>, Vec<bool>);
+
 /// A finished plan (rooms on) tightened for time as a whole, as `lanes`
 /// tightens its own path ([`oxcover_planners::CoverageProblem::tighten_within`]): the
 /// planner's waypoints, the transits and the boundary passes together, so
@@ -314,14 +318,17 @@ pub(super) fn finish(
 /// twice and every junction between them is straightened. Each room's
 /// waypoints stay in their room (`units`); `stretches` are renumbered for
 /// the waypoints kept. Should rounding leave a cell the plan covered
-/// uncovered, the plan is returned as it was.
-pub(super) fn tighten_plan(
+/// uncovered, the plan is returned as it was. `beside` runs while the
+/// path is tightened (after its first pass,
+/// [`oxcover_planners::CoverageProblem::tighten_within_beside`]); its
+/// result is returned too.
+pub(super) fn tighten_plan<R: Send>(
     problem: &CoverageProblem,
     units: Option<&RoomUnits>,
     points: Vec<Point>,
-    stretches: Vec<RoomStretch>,
-    in_pass: Vec<bool>,
-) -> (Vec<Point>, Vec<RoomStretch>, Option<Grid<bool>>, Vec<bool>) {
+    (stretches, in_pass): (Vec<RoomStretch>, Vec<bool>),
+    beside: impl FnOnce() -> R + Send,
+) -> (TightPlan, R) {
     let mut of_vertex = vec![0u32; points.len()];
     for s in &stretches {
         for z in &mut of_vertex[s.points.clone()] {
@@ -329,15 +336,15 @@ pub(super) fn tighten_plan(
         }
     }
     let zones = units.map(|u| (&u.labels, of_vertex.as_slice()));
-    let (tight, kept) = problem.tighten_within(&points, 0, zones);
+    let ((tight, kept), beside) = problem.tighten_within_beside(&points, 0, zones, beside);
     if tight == points {
-        return (points, stretches, None, in_pass);
+        return ((points, stretches, None, in_pass), beside);
     }
     let reached = problem.covered_by(&tight);
     let tool = problem.robot().tool_radius;
     let (frame, coverable) = (problem.frame(), &problem.cells().coverable);
     if loses_coverage(frame, coverable, tool, &points, &reached) {
-        return (points, stretches, None, in_pass);
+        return ((points, stretches, None, in_pass), beside);
     }
     let in_pass = kept.iter().map(|&k| in_pass[k]).collect();
     let at = |i: usize| kept.partition_point(|&k| k < i);
@@ -348,5 +355,5 @@ pub(super) fn tighten_plan(
             points: at(s.points.start)..at(s.points.end),
         })
         .collect();
-    (tight, stretches, Some(reached), in_pass)
+    ((tight, stretches, Some(reached), in_pass), beside)
 }

@@ -300,19 +300,18 @@ pub(super) fn plan_rooms(
         here = region.end;
     }
     // The cells the units' own paths cover (before their boundary
-    // passes), found while the whole path is tightened.
+    // passes), found while the whole path is tightened (beside its later
+    // passes: the first has both cores).
     // (And the copy of the cells the evaluation keeps.)
-    let ((points, stretches, covered, in_pass), (raw_covered, cells_copy)) = rayon::join(
-        || tighten_plan(problem, Some(units), points, stretches, in_pass),
-        || {
+    let ((points, stretches, covered, in_pass), (raw_covered, cells_copy)) =
+        tighten_plan(problem, Some(units), points, (stretches, in_pass), || {
             let pieces: Vec<&[Point]> = raws.iter().map(Vec::as_slice).collect();
             let tool = problem.robot().tool_radius;
             (
                 covered_cells_of(problem.frame(), &pieces, tool),
                 problem.cells().clone(),
             )
-        },
-    );
+        });
     let boundary_length_m = pass_length(&points, &in_pass);
     let plan_ms = t0.elapsed().as_secs_f64() * 1e3;
     // (Each room's own coverage is on its room's grid: the map's is found
