@@ -596,9 +596,6 @@ mod tests {
                 .map(|l| unit_cells.iter().copied().filter(|&c| u.labels[c] == l).collect())
                 .collect();
             proptest::prop_assert_eq!(&u.cells_by_unit(), &by_unit);
-            // A unit's problem from its first cell, moved to another of
-            // its cells, is its problem from there; a cell the first does
-            // not reach is refused.
             // Each unit's bounds, as a scan of its cells.
             let bounds = u.bounds();
             let scanned: Vec<(usize, usize, usize, usize)> = by_unit
@@ -610,6 +607,9 @@ mod tests {
                 })
                 .collect();
             proptest::prop_assert_eq!(&bounds, &scanned);
+            // A unit's problem from its first cell, moved to another of
+            // its cells, is its problem from there; a cell the first does
+            // not reach is refused.
             for (l, own) in (1..=u.count() as u32).zip(&by_unit) {
                 let b = bounds[l as usize - 1];
                 proptest::prop_assert_eq!(u.first_cell(l, b), own.first().copied());
