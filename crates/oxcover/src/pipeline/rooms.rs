@@ -53,8 +53,7 @@ pub(super) fn room_labels(map: &OccupancyGrid) -> Rooms {
 /// indoor rooms cut at (1.6 m), so a door at the target's edge is seen
 /// whole. Measured on the central 10 % zone of the 30 shared maps: every
 /// plan the same by waypoint hash as with the whole map's rooms for
-/// margins down to 1.5 m (1 m changes one); the targets of
-/// `docs/efficiency.md` plan as with 4 m.
+/// margins down to 1.5 m (1 m changes one).
 pub const LOCAL_ROOMS_MARGIN_M: f64 = 2.0;
 
 /// The rooms a plan is cut into: the whole map's ([`room_labels`]), or,
